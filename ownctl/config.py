@@ -1,0 +1,57 @@
+"""Every tunable of the system with its default, as frozen dataclasses.
+
+The core receives these objects explicitly; nothing reads the environment.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+
+@dataclass(frozen=True)
+class LearnConfig:
+    """Rule induction settings (paper section "Learning ownership"; reference section 3.1)."""
+
+    accuracy_gate: float = 0.9  # induce only when soft accuracy on stored permissions drops below this
+    beam: int = 3  # beam width of rule_search
+    max_conditions: int = 4  # depth bound (the original code allowed one more by mistake)
+    example_tolerance: float = 0.1  # fraction of the other class a learned rule may misclassify
+    rule_tolerance: float = 0.1  # same, for given (one-shot) rules
+    cover_threshold: float = 0.5  # a value counts as "forbid" at or above this
+    learner: str = "ours"  # "paper" reproduces the paper's algorithm; "ours" adds re-induction
+
+
+@dataclass(frozen=True)
+class PredictConfig:
+    """Per-agent kernel logistic regression on percepts (DESIGN section 5)."""
+
+    color_weight: float = 0.5
+    position_weight: float = 1.0
+    recency_weight: float = 1.0  # weight of log1p(seconds since the agent last touched the object)
+    gamma: float = 1.0
+    C: float = 10.0
+    min_claims: int = 2  # below this, the calibrated prior is used
+    base_rate: float = 0.25  # prior ownership for an agent with too few claims (never 0.5)
+
+
+@dataclass(frozen=True)
+class InferConfig:
+    """Rule-based Bayesian inference of ownership (DESIGN section 3)."""
+
+    noise: float = 0.05  # probability an instructor's permission is not explained by the rules
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Thresholds and switches that a store keeps and `ownctl config` edits."""
+
+    threshold: float = 0.5
+    thresholds: dict[str, float] = field(default_factory=dict)
+    trust: float = 1.0
+    learn: LearnConfig = field(default_factory=LearnConfig)
+    predict: PredictConfig = field(default_factory=PredictConfig)
+    infer: InferConfig = field(default_factory=InferConfig)
+
+    def threshold_for(self, action: str) -> float:
+        """The obedience threshold of ``action`` (per-action override, else the default)."""
+        return self.thresholds.get(action, self.threshold)

@@ -1,0 +1,59 @@
+"""The only exceptions users see.
+
+Every user mistake is an :class:`OwnctlError` whose message names the bad value and lists the
+valid ones; the CLI prints it as one line on stderr and exits with ``exit_code``.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+
+class OwnctlError(Exception):
+    """A user error: bad name, bad value, bad file. Exit code 1 unless a subclass says otherwise.
+
+    ``message`` is complete (it already names the valid values); ``valid`` repeats them for --json.
+    """
+
+    exit_code = 1
+
+    def __init__(self, message: str, valid: Iterable[str] | None = None) -> None:
+        self.valid = sorted(set(valid)) if valid is not None else []
+        super().__init__(message)
+        self.message = message
+
+
+class UnknownName(OwnctlError):
+    """A name that the store or the vocabulary does not know."""
+
+    def __init__(self, kind: str, name: str, known: Iterable[str]) -> None:
+        known = sorted(set(known))
+        listing = ", ".join(known) if known else "(none yet)"
+        super().__init__(f"unknown {kind} {name!r}; known {kind}s: {listing}")
+        self.valid = known
+
+
+class BadName(OwnctlError):
+    """A name that breaks the naming rule (DESIGN section 2) or is reserved."""
+
+
+class DuplicateName(OwnctlError):
+    """A name that is already taken."""
+
+
+class RuleSyntaxError(OwnctlError):
+    """A malformed rule or literal list; the message points at the bad word."""
+
+
+class BadValue(OwnctlError):
+    """A number or option out of its range (a probability outside [0, 1], NaN, ...)."""
+
+
+class StoreError(OwnctlError):
+    """A missing, foreign, unreadable or too-new store."""
+
+
+class ScenarioFailed(OwnctlError):
+    """A scenario expectation or a task step failed (exit code 4)."""
+
+    exit_code = 4

@@ -1,0 +1,1 @@
+"""ownctl.experiment."""

@@ -1,0 +1,109 @@
+"""Exact probability that a rule set forbids an action, under independent ownership atoms.
+
+Possible-worlds semantics (as in ProbLog): ownership atoms ``ownedBy(o, a)`` are independent
+Bernoulli variables; the probability that an action is forbidden is the total weight of the worlds
+in which at least one rule's conjunction holds. Only agents a rule set names matter one by one; all
+other agents fold into one "owned by some other agent" atom, whose probability is their noisy-or.
+So a rule set naming k agents and using ``any`` costs 2^(k+1) worlds per object, vectorised over
+objects (DESIGN section 3).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ownctl.logic.frame import Frame
+from ownctl.logic.rules import ANY, Rule
+
+OTHER = "*"  # the folded atom "owned by an agent no rule names"
+
+
+@dataclass(frozen=True)
+class Worlds:
+    """All assignments of the relevant ownership atoms with their weights per object.
+
+    ``bits[w, k]``: atom k true in world w; ``weights[w, i]``: P(world w) for object i;
+    ``atoms[k]``: an agent name, or OTHER for the folded atom.
+    """
+
+    atoms: tuple[str, ...]
+    bits: np.ndarray
+    weights: np.ndarray
+    probs: np.ndarray  # (K, n): P(atom k) per object
+
+
+def relevant_atoms(rule_sets: Iterable[Sequence[Rule]]) -> tuple[tuple[str, ...], bool]:
+    """The agents named by the rules (sorted) and whether any rule says ``ownedBy any``."""
+    named: set[str] = set()
+    uses_any = False
+    for rules in rule_sets:
+        for rule in rules:
+            for lit in rule.literals:
+                if lit.pred == "ownedBy":
+                    if lit.arg == ANY:
+                        uses_any = True
+                    else:
+                        named.add(lit.arg)
+    return tuple(sorted(named)), uses_any
+
+
+def other_probability(frame: Frame, named: Iterable[str]) -> np.ndarray:
+    """Noisy-or over the agents not in ``named``: P(owned by some unnamed agent), per object."""
+    keep = [j for j, a in enumerate(frame.agents) if a not in set(named)]
+    if not keep:
+        return np.zeros(frame.n)
+    return 1.0 - np.prod(1.0 - frame.own[:, keep], axis=1)
+
+
+def enumerate_worlds(frame: Frame, named: Sequence[str], with_other: bool) -> Worlds:
+    """Every assignment of the named agents' atoms (and the folded atom) with its weight per object."""
+    atoms = (*named, OTHER) if with_other else tuple(named)
+    probs = [frame.agent_column(a) for a in named]
+    if with_other:
+        probs.append(other_probability(frame, named))
+    k = len(atoms)
+    p = np.array(probs).reshape(k, frame.n)
+    bits = ((np.arange(2**k)[:, None] >> np.arange(k)[None, :]) & 1).astype(bool)  # (W, K)
+    weights = np.ones((2**k, frame.n))
+    for j in range(k):
+        weights *= np.where(bits[:, j : j + 1], p[j][None, :], 1.0 - p[j][None, :])
+    return Worlds(atoms, bits, weights, p)
+
+
+def rule_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarray:
+    """(W, n) bool: does some rule's conjunction hold in world w for object i."""
+    width = len(worlds.bits)
+    out = np.zeros((width, frame.n), dtype=bool)
+    crisp_cache: dict[tuple[str, str], np.ndarray] = {}
+    index = {a: j for j, a in enumerate(worlds.atoms)}
+    any_owned = worlds.bits.any(axis=1)[:, None] if worlds.atoms else np.zeros((width, 1), dtype=bool)
+    for rule in rules:
+        holds = np.ones((width, frame.n), dtype=bool)
+        for lit in rule.literals:
+            if lit.pred == "ownedBy":
+                if lit.arg == ANY:
+                    value = any_owned
+                elif lit.arg in index:
+                    value = worlds.bits[:, index[lit.arg]][:, None]
+                else:
+                    value = np.zeros((width, 1), dtype=bool)
+            else:
+                if lit.atom not in crisp_cache:
+                    crisp_cache[lit.atom] = frame.crisp(lit)[None, :]
+                value = crisp_cache[lit.atom]
+            holds &= ~value if lit.negated else value
+        out |= holds
+    return out
+
+
+def p_forbidden(rules: Sequence[Rule], frame: Frame) -> np.ndarray:
+    """Exact P(some rule holds) for every object of ``frame`` (length n, in [0, 1])."""
+    if not rules:
+        return np.zeros(frame.n)
+    named, uses_any = relevant_atoms([rules])
+    worlds = enumerate_worlds(frame, named, uses_any)
+    truth = rule_truth(rules, frame, worlds)
+    return np.clip((worlds.weights * truth).sum(axis=0), 0.0, 1.0)

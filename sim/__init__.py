@@ -1,0 +1,1 @@
+"""Headless MuJoCo Baxter simulation: model, IK, scripted skills, task execution."""
