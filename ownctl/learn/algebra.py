@@ -1,0 +1,81 @@
+"""Set algebra on rules: refinement, subtraction (``rule_diff``) and merging (``merge_rule``).
+
+These are the paper's building blocks (reference section 2.4 and 3.6), made deterministic: every
+iteration is over canonically ordered literals, never over hash order.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+
+import numpy as np
+
+from ownctl.logic.rules import Literal, Rule
+
+
+def refine(rule: Rule, atoms: Sequence[Literal]) -> list[Rule]:
+    """Every one-literal specialisation of ``rule``: for each unused atom, ``rule and a`` then ``rule and not a``."""
+    used = {lit.atom for lit in rule.literals}
+    out: list[Rule] = []
+    for atom in atoms:
+        if atom.atom in used:
+            continue
+        out.append(rule.with_literal(atom))
+        out.append(rule.with_literal(atom.negate()))
+    return out
+
+
+def rule_diff(r1: Rule, r2: Rule) -> list[Rule]:
+    """``r1 and not r2`` as a list of rules (empty if r2 contains r1; [r1] if they are disjoint)."""
+    c1 = r1.conditions
+    if any(lit.negate() in c1 for lit in r2.literals):
+        return [r1]
+    return [r1.with_literal(lit.negate()) for lit in r2.literals if lit not in c1]
+
+
+def merge_pair(r1: Rule, r2: Rule) -> Rule | None:
+    """``A and c`` with ``A and not c`` gives ``A``; None if the pair does not merge that way."""
+    diff = r1.conditions ^ r2.conditions
+    if len(diff) == 2:
+        a, b = sorted(diff, key=Literal.sort_key)
+        if a.negate() == b:
+            return Rule(r1.action, tuple(r1.conditions & r2.conditions))
+    return None
+
+
+def merge_rule(
+    rules: Sequence[Rule], new: Rule, covers: Callable[[Rule], np.ndarray] | None = None
+) -> list[Rule]:
+    """Add ``new`` to ``rules`` without redundancy (paper's mergeRule, fixed).
+
+    Complementary pairs merge repeatedly; a rule that is syntactically more specific than another is
+    dropped (the general one stays). When ``covers`` is given (rule -> bool mask of the stored
+    examples it covers), a rule no more specific than ``new`` whose covered examples are a strict
+    subset of ``new``'s is also dropped (the paper's data-driven subsumption).
+    """
+    current = list(rules)
+    changed = True
+    while changed:
+        changed = False
+        for r in current:
+            merged = merge_pair(r, new)
+            if merged is not None:
+                current.remove(r)
+                new = merged
+                changed = True
+                break
+    if any(r.conditions <= new.conditions for r in current):
+        return current
+    kept = [r for r in current if not new.conditions <= r.conditions]
+    if covers is not None:
+        mask_new = covers(new)
+        kept = [
+            r
+            for r in kept
+            if not (
+                len(new.literals) <= len(r.literals)
+                and np.all(covers(r) <= mask_new)
+                and np.any(mask_new & ~covers(r))
+            )
+        ]
+    return [*kept, new]

@@ -1,0 +1,116 @@
+"""Examples of one action, evaluated exactly and vectorised for rule search.
+
+An :class:`Evidence` holds the objects that carry a permission for one action (a frame whose
+ownership is the *prior*: induction never sees inferred ownership) and the permission values
+(1 forbid, 0 allow). The truth of any literal or conjunction is kept as a (W, n) boolean table over
+the joint assignments of the ownership atoms, so the exact probability of a rule set is one
+weighted sum, and many candidate rules are scored at once.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ownctl.logic.frame import Frame
+from ownctl.logic.prob import enumerate_worlds
+from ownctl.logic.rules import ANY, Literal, Rule
+
+MAX_NAMED_AGENTS = 10
+
+
+@dataclass(frozen=True)
+class Vocabulary:
+    """The atoms a learned rule may use: agents, colours, areas and categories the store knows."""
+
+    agents: tuple[str, ...] = ()
+    colors: tuple[str, ...] = ()
+    areas: tuple[str, ...] = ()
+    categories: tuple[str, ...] = ()
+
+    def atoms(self) -> list[Literal]:
+        """Positive literals in canonical order, ``any`` first for each predicate."""
+        out: list[Literal] = []
+        for pred, args in (
+            ("ownedBy", self.agents),
+            ("isColored", self.colors),
+            ("inArea", self.areas),
+            ("inCategory", self.categories),
+        ):
+            if args:
+                out.append(Literal(pred, ANY))
+                out.extend(Literal(pred, a) for a in sorted(set(args)))
+        return out
+
+
+class Evidence:
+    """The stored permissions of one action as a vectorised truth table."""
+
+    def __init__(self, frame: Frame, values: Sequence[float] | np.ndarray) -> None:
+        self.frame = frame
+        self.t = np.asarray(values, dtype=float).reshape(frame.n)
+        mass = frame.own.sum(axis=0) if frame.n else np.zeros(len(frame.agents))
+        named = [a for a, m in zip(frame.agents, mass, strict=True) if m > 0]
+        if len(named) > MAX_NAMED_AGENTS:
+            order = np.argsort(-np.array([mass[frame.agents.index(a)] for a in named]), kind="stable")
+            named = sorted(named[i] for i in order[:MAX_NAMED_AGENTS])
+        self.worlds = enumerate_worlds(frame, tuple(named), with_other=True)
+        self._cache: dict[Literal, np.ndarray] = {}
+
+    @property
+    def n(self) -> int:
+        """Number of examples."""
+        return self.frame.n
+
+    @property
+    def positives(self) -> np.ndarray:
+        """Bool mask of forbid examples (value >= 0.5)."""
+        return self.t >= 0.5
+
+    def literal(self, lit: Literal) -> np.ndarray:
+        """(W, n) or broadcastable truth of a literal."""
+        if lit not in self._cache:
+            w = self.worlds
+            if lit.pred == "ownedBy":
+                if lit.arg == ANY:
+                    base = w.bits.any(axis=1)[:, None] if w.atoms else np.zeros((1, 1), dtype=bool)
+                elif lit.arg in w.atoms:
+                    base = w.bits[:, w.atoms.index(lit.arg)][:, None]
+                else:
+                    base = np.zeros((1, 1), dtype=bool)
+            else:
+                base = self.frame.crisp(lit)[None, :]
+            value = ~base if lit.negated else base
+            self._cache[lit] = np.broadcast_to(value, (len(w.bits), self.n))
+        return self._cache[lit]
+
+    def truth(self, rule: Rule) -> np.ndarray:
+        """(W, n) truth of one conjunction."""
+        out = np.ones((len(self.worlds.bits), self.n), dtype=bool)
+        for lit in rule.literals:
+            out = out & self.literal(lit)
+        return out
+
+    def union(self, rules: Sequence[Rule]) -> np.ndarray:
+        """(W, n) truth of a rule set (disjunction)."""
+        out = np.zeros((len(self.worlds.bits), self.n), dtype=bool)
+        for rule in rules:
+            out |= self.truth(rule)
+        return out
+
+    def prob(self, truth: np.ndarray) -> np.ndarray:
+        """Exact probability per example of a truth table (..., W, n) -> (..., n)."""
+        return np.clip((truth * self.worlds.weights).sum(axis=-2), 0.0, 1.0)
+
+    def q(self, rules: Sequence[Rule]) -> np.ndarray:
+        """P(forbidden) per example under a rule set."""
+        return self.prob(self.union(rules)) if rules else np.zeros(self.n)
+
+    def soft_accuracy(self, rules: Sequence[Rule]) -> float:
+        """Mean agreement between each permission and the rules' probability (1 with no examples)."""
+        if self.n == 0:
+            return 1.0
+        q = self.q(rules)
+        return float(np.mean(np.minimum(self.t, q) + np.minimum(1 - self.t, 1 - q)))

@@ -1,0 +1,221 @@
+"""Incremental dual-mode norm induction: the paper's Algorithms 1-4 and the conflict gate.
+
+* ``cover_example``: a forbid permission the rules do not explain -> search a new rule from the
+  empty rule that covers it without covering (many) allowed examples.
+* ``uncover_example``: an allow permission the rules forbid -> specialise each covering rule so it
+  excludes the example and subtract the specialisation.
+* ``cover_rule``: a given forbid norm -> specialise it against the allowed examples (Gricean), add.
+* ``uncover_rule``: a given allow norm -> specialise it against the forbidden examples, subtract it.
+
+Two scorings share this structure (``LearnConfig.learner``):
+
+* ``paper``: the original system's counts and thresholds (crisp false-positive counts with one error
+  tolerated for examples, soft false/true-positive values for given rules);
+* ``ours``: the change in negative log-likelihood of all stored permissions under a label-noise model
+  (the instructor says what the rules imply with probability 1 - noise), plus a penalty per literal.
+  Uncertain ownership then counts as evidence in proportion to its probability instead of being cut
+  at 0.5, which is what makes noisy-ownership learning work.
+
+Everything is deterministic: canonical literal order, stable sorts, ordered example sweeps.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from ownctl.config import LearnConfig
+from ownctl.learn.algebra import merge_rule, rule_diff
+from ownctl.learn.evidence import Evidence, Vocabulary
+from ownctl.learn.search import rule_search
+from ownctl.logic.rules import Norm, Rule
+
+LABEL_NOISE = 0.05
+LITERAL_PENALTY = 0.7  # nats per literal (and per rule) in the "ours" score
+
+
+@dataclass(frozen=True)
+class Outcome:
+    """Result of one instruction: the new rule set, whether induction ran, the gate's accuracy."""
+
+    rules: tuple[Rule, ...]
+    induced: bool
+    accuracy: float
+
+    @property
+    def changed(self) -> bool:
+        """Whether the caller's rule set changed (compare with the one it passed in)."""
+        return self.induced
+
+
+def nll(ev: Evidence, q: np.ndarray) -> np.ndarray:
+    """Negative log-likelihood of the permissions given forbid probabilities q (..., n) -> (...)."""
+    p = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * q
+    return -(ev.t * np.log(p) + (1 - ev.t) * np.log(1 - p)).sum(axis=-1)
+
+
+class Inducer:
+    """The four entry points over one action's stored examples."""
+
+    def __init__(self, action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig) -> None:
+        self.action, self.ev, self.cfg = action, ev, cfg
+        self.atoms = vocab.atoms()
+        self.ours = cfg.learner == "ours"
+
+    # -- helpers -------------------------------------------------------------------------------
+    def _covers(self, rule: Rule) -> np.ndarray:
+        return self.ev.prob(self.ev.truth(rule)) >= self.cfg.cover_threshold
+
+    def _merge(self, rules: Sequence[Rule], new: Rule) -> list[Rule]:
+        return merge_rule(rules, new, None if self.ours else self._covers)
+
+    def _search(self, init: Rule, score, threshold: float, filters=()):  # type: ignore[no-untyped-def]
+        return rule_search(self.ev, init, self.atoms, score, threshold, filters, self.cfg.beam,
+                           self.cfg.max_conditions, stop_at_success=not self.ours)
+
+    def _delta_add(self, rules: Sequence[Rule]):  # type: ignore[no-untyped-def]
+        """Ours: score of adding each candidate to ``rules`` (lower is better, < 0 improves)."""
+        base_truth = self.ev.union(rules)
+        base = float(nll(self.ev, self.ev.prob(base_truth)))
+
+        def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
+            q = self.ev.prob(truths | base_truth[None])
+            size = np.array([len(c.literals) + 1 for c in cands], dtype=float)
+            return nll(self.ev, q) - base + LITERAL_PENALTY * size
+
+        return score
+
+    # -- Algorithm 1 -------------------------------------------------------------------------
+    def cover_example(self, rules: list[Rule], i: int) -> list[Rule]:
+        """Add a rule covering forbid example ``i`` (unless no acceptable rule exists)."""
+        neg = ~self.ev.positives
+        covers_new = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
+        is_new = lambda tr, c: np.array([r not in rules for r in c])  # noqa: E731
+        if self.ours:
+            result = self._search(Rule(self.action), self._delta_add(rules), -1e-9, (covers_new, is_new))
+        else:
+            def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
+                return (self.ev.prob(truths)[:, neg] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
+
+            thr = max(1.0, self.cfg.example_tolerance * neg.sum())
+            result = self._search(Rule(self.action), score, thr, (covers_new, is_new))
+        return self._merge(rules, result.rule) if result.success else rules
+
+    # -- Algorithm 2 -------------------------------------------------------------------------
+    def uncover_example(self, rules: list[Rule], i: int) -> list[Rule]:
+        """Specialise every rule that covers allow example ``i`` and subtract the specialisation."""
+        current = list(rules)
+        for r in [r for r in rules if self._covers(r)[i]]:
+            if r not in current:
+                continue
+            keeps_neg = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
+            if self.ours:
+                others = [x for x in current if x != r]
+                rest = self.ev.union(others)
+                r_truth = self.ev.truth(r)
+                base = float(nll(self.ev, self.ev.prob(self.ev.union(current))))
+
+                def score(truths: np.ndarray, cands: Sequence[Rule], r=r, rest=rest, r_truth=r_truth,
+                          base=base) -> np.ndarray:
+                    q = self.ev.prob(rest[None] | (r_truth[None] & ~truths))
+                    extra = np.array([len(c.literals) - len(r.literals) for c in cands], dtype=float)
+                    return nll(self.ev, q) - base + LITERAL_PENALTY * extra
+
+                result = self._search(r, score, -1e-9, (keeps_neg,))
+            else:
+                pos = self.ev.positives & self._covers(r)
+
+                def score(truths: np.ndarray, cands: Sequence[Rule], pos=pos) -> np.ndarray:
+                    return (self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
+
+                thr = max(1.0, self.cfg.example_tolerance * pos.sum())
+                result = self._search(r, score, thr, (keeps_neg,))
+            if result.success:
+                current.remove(r)
+                for piece in rule_diff(r, result.rule):
+                    current = self._merge(current, piece)
+        return current
+
+    # -- Algorithms 3 and 4 ------------------------------------------------------------------
+    def cover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
+        """Add a given forbid rule, specialised against the allowed examples."""
+        if any(r.conditions <= given.conditions for r in rules):
+            return rules
+        neg = ~self.ev.positives
+        if self.ours:
+            add = self._delta_add(rules)
+            result = self._search(given, add, np.inf)
+            return self._merge(rules, result.rule)
+
+        def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
+            return np.maximum(self.ev.prob(truths)[:, neg] - self.ev.t[neg], 0).sum(axis=1)
+
+        result = self._search(given, score, self.cfg.rule_tolerance * neg.sum())
+        return self._merge(rules, result.rule) if result.success else rules
+
+    def uncover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
+        """Subtract a given allow rule, first specialised against the forbidden examples."""
+        pos = self.ev.positives
+
+        def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
+            return np.minimum(self.ev.prob(truths)[:, pos], self.ev.t[pos]).sum(axis=1)
+
+        result = self._search(given, score, self.cfg.rule_tolerance * pos.sum())
+        if not result.success and not self.ours:
+            return rules
+        return subtract(rules, result.rule if result.success else given, self._merge)
+
+
+def subtract(rules: Sequence[Rule], allow: Rule, merge=None) -> list[Rule]:  # type: ignore[no-untyped-def]
+    """Every rule minus ``allow`` (rules disjoint from it are kept as they are)."""
+    merge = merge or (lambda rs, r: merge_rule(rs, r))
+    out: list[Rule] = []
+    for r in rules:
+        pieces = rule_diff(r, allow)
+        if pieces == [r]:
+            out = merge(out, r)
+            continue
+        for piece in pieces:
+            if not piece.is_contradictory():
+                out = merge(out, piece)
+    return out
+
+
+def learn_permission(
+    action: str, rules: Sequence[Rule], allows: Sequence[Rule], ev: Evidence, new: int,
+    vocab: Vocabulary, cfg: LearnConfig,
+) -> Outcome:
+    """The conflict gate, then induction: accommodate example ``new``, then every misclassified one.
+
+    While the rules agree with at least ``cfg.accuracy_gate`` of the stored permissions (soft
+    accuracy), nothing is learned: the permission is only stored and used for inference.
+    """
+    accuracy = ev.soft_accuracy(rules)
+    if accuracy >= cfg.accuracy_gate:
+        return Outcome(tuple(rules), False, accuracy)
+    ind = Inducer(action, ev, vocab, cfg)
+    current = list(rules)
+    for j in [new, *(j for j in range(ev.n) if j != new)]:
+        q = float(ev.q(current)[j])
+        if ev.t[j] >= cfg.cover_threshold and q < cfg.cover_threshold:
+            current = ind.cover_example(current, j)
+        elif ev.t[j] < cfg.cover_threshold and q >= cfg.cover_threshold:
+            current = ind.uncover_example(current, j)
+    for allow in allows if ind.ours else ():
+        current = subtract(current, allow, ind._merge)
+    return Outcome(tuple(current), True, accuracy)
+
+
+def learn_norm(
+    norm: Norm, rules: Sequence[Rule], ev: Evidence, vocab: Vocabulary, cfg: LearnConfig
+) -> Outcome:
+    """One-shot instruction of a forbid (cover rule) or allow (uncover rule) norm."""
+    accuracy = ev.soft_accuracy(rules)
+    ind = Inducer(norm.rule.action, ev, vocab, cfg)
+    if norm.sign == "forbid":
+        current = ind.cover_rule(list(rules), norm.rule)
+    else:
+        current = ind.uncover_rule(list(rules), norm.rule)
+    return Outcome(tuple(current), True, accuracy)

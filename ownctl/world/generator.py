@@ -1,0 +1,86 @@
+"""The paper's blocks world (reference section 7.1), seeded.
+
+``k`` agents, each with an angular sector around the home area at the origin; one cluster of
+objects per agent plus an unowned cluster at the origin; object ``i`` goes to cluster ``i mod (k+1)``.
+Positions are uniform in radius within 0.3 m of the cluster centre; interaction ages are exponential
+(mean 10 s for the owner, 1000 s for everyone else); colours are uniform over four names.
+The paper's colourless blocks (its colour "none") are called ``grey`` here, because ``none`` is a
+reserved word of the norm language.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from typing import Any
+
+import numpy as np
+
+from ownctl.errors import BadValue
+from ownctl.world.model import Area, ObjectSpec, World
+
+PAPER_AGENTS = ("agent1", "agent2", "agent3")
+PAPER_COLORS = ("grey", "red", "green", "blue")
+PAPER_NORMS = (
+    "forbid trash if ownedBy any",
+    "forbid pickUp if ownedBy agent2",
+    "forbid collect if isColored red",
+)
+PAPER_AREAS = (
+    Area("home", (-0.1, -0.1, 0.1, 0.1)),
+    Area("trash", (-0.3, 0.6, 0.2, 1.1)),
+    Area("workspace", (-1.0, -1.0, 1.0, 1.0)),
+)
+CLUSTER_RADIUS = 0.3
+AVATAR_RANGE = (0.4, 0.8)
+MEAN_AGE_OWNER = 10.0
+MEAN_AGE_OTHER = 1000.0
+GENERATOR_KEYS = ("kind", "objects", "prefix")
+
+
+def paper_blocks_world(
+    rng: np.random.Generator,
+    n_objects: int = 20,
+    agents: tuple[str, ...] = PAPER_AGENTS,
+    norms: tuple[str, ...] = PAPER_NORMS,
+    prefix: str = "block",
+) -> World:
+    """A fresh random blocks world with its ground truth (true owners and true norms)."""
+    k = len(agents)
+    if k < 1 or n_objects < 0:
+        raise BadValue(f"a blocks world needs at least one agent and a non-negative object count, got "
+                       f"{k} agents and {n_objects} objects")
+    centres = [np.zeros(2)]
+    for i in range(k):
+        radius = rng.uniform(*AVATAR_RANGE)
+        angle = rng.uniform(i, i + 1) * 2 * np.pi / k
+        centres.append(radius * np.array([np.cos(angle), np.sin(angle)]))
+    objects: list[ObjectSpec] = []
+    owners: dict[str, dict[str, float]] = {}
+    for i in range(n_objects):
+        cluster = i % (k + 1)
+        r = rng.uniform(0.0, CLUSTER_RADIUS)
+        theta = rng.uniform(0.0, 2 * np.pi)
+        x, y = centres[cluster] + r * np.array([np.cos(theta), np.sin(theta)])
+        color = PAPER_COLORS[int(rng.integers(len(PAPER_COLORS)))]
+        owner = agents[cluster - 1] if cluster > 0 else None
+        ages = {
+            a: float(rng.exponential(MEAN_AGE_OWNER if a == owner else MEAN_AGE_OTHER)) for a in agents
+        }
+        name = f"{prefix}{i + 1}"
+        objects.append(ObjectSpec(name, color, (float(x), float(y), 0.0), frozenset({"block"}), ages))
+        owners[name] = {owner: 1.0} if owner else {}
+    return World("paper blocks world", tuple(agents), tuple(objects), PAPER_AREAS, tuple(norms), owners)
+
+
+def generate(spec: Mapping[str, Any], rng: np.random.Generator, agents: tuple[str, ...] = ()) -> World:
+    """A world from a TOML ``[generator]`` table: ``kind = "paper-blocks"``, ``objects = N``, ``prefix``."""
+    unknown = sorted(set(spec) - set(GENERATOR_KEYS))
+    if unknown:
+        raise BadValue(f"unknown generator key {unknown[0]!r}; valid keys: {', '.join(GENERATOR_KEYS)}")
+    kind = spec.get("kind", "paper-blocks")
+    if kind != "paper-blocks":
+        raise BadValue(f"unknown generator kind {kind!r}; valid kinds: paper-blocks")
+    n = spec.get("objects", 20)
+    if not isinstance(n, int) or isinstance(n, bool) or not 0 <= n <= 100_000:
+        raise BadValue(f"generator objects must be an integer in [0, 100000], got {n!r}")
+    return paper_blocks_world(rng, n, tuple(agents) or PAPER_AGENTS, prefix=str(spec.get("prefix", "block")))
