@@ -15,10 +15,13 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ownctl.errors import RuleSyntaxError
-from ownctl.logic.names import is_name
+import re
+
+from ownctl.logic.names import RESERVED, is_name
 from ownctl.logic.vocab import ACTIONS, PREDICATES
 
 ANY = "any"
+_SPACE = re.compile(r"[ \t\r\n]+")
 SIGNS = ("forbid", "allow")
 
 
@@ -129,7 +132,7 @@ def parse_literals(words: list[str], start: int, source: str) -> tuple[Literal, 
         if i >= len(words):
             raise _fail(source, i, "", f"{pred} needs an argument ({PREDICATES[pred].argument} name or any)")
         arg = words[i]
-        if not is_name(arg) or arg in ("not", "and", "if", "none"):
+        if not is_name(arg) or (arg != ANY and arg.lower() in RESERVED):
             raise _fail(source, i, arg, f"not a valid {PREDICATES[pred].argument} name (or any)")
         lits.append(Literal(pred, arg, negated))
         i += 1
@@ -148,7 +151,7 @@ def parse_literals(words: list[str], start: int, source: str) -> tuple[Literal, 
 
 def parse_norm(text: str) -> Norm:
     """Parse ``forbid|allow ACTION [if LITERALS]``; errors point at the bad word and list valid ones."""
-    source = " ".join(text.split())
+    source = " ".join(w for w in _SPACE.split(text) if w)
     words = source.split(" ") if source else []
     if not words:
         raise _fail(source, 0, "", "empty rule", SIGNS)

@@ -91,9 +91,6 @@ def test_bad_word_position_is_reported() -> None:
     assert "word 7 'colour'" in info.value.message
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "parser accepts reserved words as arguments (case-sensitive check of only not/and/if/none): "
-    "'ownedBy Any' becomes an agent that check_name would refuse, so the rule silently never fires"))
 @pytest.mark.parametrize("arg", ["Any", "ANY", "None", "forbid", "allow", "on"])
 def test_reserved_word_is_not_an_argument(arg: str) -> None:
     with pytest.raises(RuleSyntaxError) as info:
@@ -101,9 +98,6 @@ def test_reserved_word_is_not_an_argument(arg: str) -> None:
     assert repr(arg) in info.value.message
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "str.split() treats the control characters FS/GS/RS/US and NEL (U+001C-U+001F, U+0085) as "
-    "whitespace, so 'isColored\\x1cred' silently parses as 'isColored red'"))
 @pytest.mark.parametrize("ch", ["\x1c", "\x1d", "\x1e", "\x1f", "\x85"])
 def test_control_character_is_not_a_separator(ch: str) -> None:
     with pytest.raises(RuleSyntaxError):
