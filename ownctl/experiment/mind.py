@@ -54,6 +54,7 @@ class Mind:
         self.order: dict[str, list[int]] = {a: [] for a in ACTIONS}  # arrival order of permissions
         self.rules: dict[str, tuple[Rule, ...]] = {a: () for a in ACTIONS}
         self.allows: dict[str, list[Rule]] = {a: [] for a in ACTIONS}
+        self.given: dict[str, list[Rule]] = {a: [] for a in ACTIONS}
         self.index = {o.name: i for i, o in enumerate(self.objects)}
         self._base = make_frame(self.objects, self.areas, self.agents, np.zeros((n, m)))
         self._posterior: np.ndarray | None = None
@@ -131,7 +132,8 @@ class Mind:
             return None
         ev, idx = self.evidence(action)
         out = learn_permission(action, self.rules[action], self.allows[action], ev, len(idx) - 1,
-                               self.vocab, self.settings.learn)
+                               self.vocab, self.settings.learn,
+                               [r for r in self.given[action] if r in self.rules[action]])
         self.rules[action] = out.rules
         return out
 
@@ -144,6 +146,8 @@ class Mind:
         out = learn_norm(norm, self.rules[action], ev, self.vocab, self.settings.learn)
         if norm.sign == "allow":
             self.allows[action].append(norm.rule)
+        else:
+            self.given[action].extend(r for r in out.rules if r not in self.rules[action])
         self.rules[action] = out.rules
         self._changed()
         return out

@@ -58,6 +58,7 @@ class Evidence:
             named = sorted(named[i] for i in order[:MAX_NAMED_AGENTS])
         self.worlds = enumerate_worlds(frame, tuple(named), with_other=True)
         self._cache: dict[Literal, np.ndarray] = {}
+        self._rules: dict[Rule, np.ndarray] = {}
 
     @property
     def n(self) -> int:
@@ -86,11 +87,18 @@ class Evidence:
             self._cache[lit] = np.broadcast_to(value, (len(w.bits), self.n))
         return self._cache[lit]
 
+    def literal_stack(self, lits: Sequence[Literal]) -> np.ndarray:
+        """(L, W, n) truth of several literals."""
+        return np.stack([self.literal(x) for x in lits])
+
     def truth(self, rule: Rule) -> np.ndarray:
-        """(W, n) truth of one conjunction."""
-        out = np.ones((len(self.worlds.bits), self.n), dtype=bool)
-        for lit in rule.literals:
-            out = out & self.literal(lit)
+        """(W, n) truth of one conjunction (cached)."""
+        out = self._rules.get(rule)
+        if out is None:
+            out = np.ones((len(self.worlds.bits), self.n), dtype=bool)
+            for lit in rule.literals:
+                out = out & self.literal(lit)
+            self._rules[rule] = out
         return out
 
     def union(self, rules: Sequence[Rule]) -> np.ndarray:

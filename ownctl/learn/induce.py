@@ -138,6 +138,31 @@ class Inducer:
                     current = self._merge(current, piece)
         return current
 
+    # -- re-induction (ours) ------------------------------------------------------------------
+    def reinduce(self, given: Sequence[Rule], allows: Sequence[Rule], max_rules: int = 4) -> list[Rule]:
+        """Ours: the most probable rule set for all stored examples, kept around the given rules.
+
+        Greedy covering from the given rules: repeatedly add the rule (beam search from the empty
+        rule) that most lowers the penalised negative log-likelihood, then drop learned rules whose
+        removal does not cost more than their penalty, then subtract the allow norms. The result
+        depends only on the examples, not on the order they arrived in.
+        """
+        current = list(given)
+        for _ in range(max_rules):
+            is_new = lambda tr, c, cur=current: np.array([r not in cur for r in c])  # noqa: E731
+            result = self._search(Rule(self.action), self._delta_add(current), -1e-9, (is_new,))
+            if not result.success:
+                break
+            current = self._merge(current, result.rule)
+        for r in [r for r in current if r not in given]:
+            rest = [x for x in current if x != r]
+            gain = float(nll(self.ev, self.ev.q(rest)) - nll(self.ev, self.ev.q(current)))
+            if gain <= LITERAL_PENALTY * (len(r.literals) + 1):
+                current = rest
+        for allow in allows:
+            current = subtract(current, allow, self._merge)
+        return current
+
     # -- Algorithms 3 and 4 ------------------------------------------------------------------
     def cover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
         """Add a given forbid rule, specialised against the allowed examples."""
@@ -183,19 +208,34 @@ def subtract(rules: Sequence[Rule], allow: Rule, merge=None) -> list[Rule]:  # t
     return out
 
 
+def unexplainable(ev: Evidence, rules: Sequence[Rule], i: int, cfg: LearnConfig) -> bool:
+    """True if no ownership assignment lets the rules agree with permission ``i``.
+
+    Such a permission cannot be absorbed by ownership inference, which is the reason the gate
+    exists, so the ``ours`` learner learns from it even while the rules are otherwise accurate.
+    """
+    truth = ev.union(rules)[:, i]
+    return bool(not truth.any()) if ev.t[i] >= cfg.cover_threshold else bool(truth.all())
+
+
 def learn_permission(
     action: str, rules: Sequence[Rule], allows: Sequence[Rule], ev: Evidence, new: int,
-    vocab: Vocabulary, cfg: LearnConfig,
+    vocab: Vocabulary, cfg: LearnConfig, given: Sequence[Rule] = (),
 ) -> Outcome:
     """The conflict gate, then induction: accommodate example ``new``, then every misclassified one.
 
     While the rules agree with at least ``cfg.accuracy_gate`` of the stored permissions (soft
-    accuracy), nothing is learned: the permission is only stored and used for inference.
+    accuracy), nothing is learned: the permission is only stored and used for inference. The
+    ``ours`` learner also learns from a permission no ownership could explain (:func:`unexplainable`)
+    and then re-induces the whole rule set (:meth:`Inducer.reinduce`).
     """
     accuracy = ev.soft_accuracy(rules)
-    if accuracy >= cfg.accuracy_gate:
+    ours = cfg.learner == "ours"
+    if accuracy >= cfg.accuracy_gate and not (ours and unexplainable(ev, rules, new, cfg)):
         return Outcome(tuple(rules), False, accuracy)
     ind = Inducer(action, ev, vocab, cfg)
+    if ours:
+        return Outcome(tuple(ind.reinduce(given, allows)), True, accuracy)
     current = list(rules)
     for j in [new, *(j for j in range(ev.n) if j != new)]:
         q = float(ev.q(current)[j])

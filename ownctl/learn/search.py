@@ -12,7 +12,6 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ownctl.learn.algebra import refine
 from ownctl.learn.evidence import Evidence
 from ownctl.logic.rules import Literal, Rule
 
@@ -58,15 +57,21 @@ def rule_search(
             break
         seen: set[Rule] = set()
         candidates: list[Rule] = []
+        blocks: list[np.ndarray] = []
         for rule in frontier:
-            for cand in refine(rule, atoms):
-                if cand not in seen:
-                    seen.add(cand)
-                    candidates.append(cand)
+            used = {lit.atom for lit in rule.literals}
+            lits = [x for a in atoms if a.atom not in used for x in (a, a.negate())]
+            fresh = [(rule.with_literal(x), x) for x in lits]
+            fresh = [(c, x) for c, x in fresh if c not in seen]
+            if not fresh:
+                continue
+            seen.update(c for c, _ in fresh)
+            candidates.extend(c for c, _ in fresh)
+            blocks.append(ev.truth(rule)[None] & ev.literal_stack([x for _, x in fresh]))
         depth += 1
         if not candidates:
             break
-        truths = np.stack([ev.truth(c) for c in candidates])
+        truths = np.concatenate(blocks)
         keep = np.ones(len(candidates), dtype=bool)
         for f in filters:
             keep &= f(truths, candidates)
