@@ -1,0 +1,118 @@
+"""Ownership beliefs: which number decides, and the evaluation frame built from the store.
+
+The one place where beliefs are resolved (DESIGN section 3):
+
+- :func:`decision_belief` (what ``check``, ``owners`` and forbid decisions use): the posterior if
+  set, else the claim, else the prior, else 0.0;
+- :func:`induction_belief` (what rule induction sees): the claim, else the prior, else 0.0.
+
+:func:`after_claims` and :func:`after_permissions` are the hooks where prediction (KLR) and
+rule-based Bayesian inference will recompute priors and posteriors; both currently keep the stored
+beliefs as they are.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ownctl.logic.frame import Frame
+from ownctl.world.model import Area, ObjectSpec, make_frame
+
+if TYPE_CHECKING:
+    from ownctl.store.models import Object, Ownership
+    from ownctl.store.repo import Tx
+
+Belief = Callable[["Ownership"], tuple[float, str]]
+
+
+def decision_belief(row: Ownership) -> tuple[float, str]:
+    """(p, source) used for decisions: posterior, else claim, else prior, else (0.0, "none")."""
+    if row.posterior_p is not None:
+        return row.posterior_p, row.posterior_source or "posterior"
+    if row.claim_p is not None:
+        return row.claim_p, "claim"
+    if row.prior_p is not None:
+        return row.prior_p, row.prior_source or "prior"
+    return 0.0, "none"
+
+
+def induction_belief(row: Ownership) -> tuple[float, str]:
+    """(p, source) that rule induction sees: claim, else prior, else (0.0, "none")."""
+    if row.claim_p is not None:
+        return row.claim_p, "claim"
+    if row.prior_p is not None:
+        return row.prior_p, row.prior_source or "prior"
+    return 0.0, "none"
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """The world as the store knows it, in core types; ``own[i, j]`` for objects[i], agents[j]."""
+
+    agents: tuple[str, ...]
+    objects: tuple[ObjectSpec, ...]
+    areas: tuple[Area, ...]
+    ids: tuple[int, ...]  # object ids, parallel to ``objects``
+    own: np.ndarray  # (n, m)
+    sources: tuple[tuple[str, ...], ...]  # sources[i][j] of own[i, j]
+
+    def frame(self) -> Frame:
+        """The evaluation frame of these objects under these beliefs."""
+        return make_frame(self.objects, self.areas, self.agents, self.own)
+
+
+def object_spec(row: Object, categories: set[str], touches: dict[str, float], now: float) -> ObjectSpec:
+    """A stored object as a core :class:`ObjectSpec`; absolute touch times become ages at ``now``."""
+    position = None if row.x is None or row.y is None else (row.x, row.y, row.z if row.z is not None else 0.0)
+    return ObjectSpec(
+        name=row.name,
+        color=row.color,
+        position=position,
+        categories=frozenset(categories),
+        last_touch={a: max(0.0, now - t) for a, t in touches.items()},
+    )
+
+
+def snapshot(
+    tx: Tx, now: float, belief: Belief = decision_belief, only: Sequence[str] | None = None
+) -> Snapshot:
+    """Load agents, areas, objects (all, or those named in ``only``) and beliefs into a Snapshot."""
+    agents = tx.agents()
+    agent_names = {a.id: a.name for a in agents}
+    rows = [tx.object(n) for n in only] if only is not None else tx.objects()
+    categories = tx.categories()
+    touched: dict[int, dict[str, float]] = {}
+    for (oid, aid), time in tx.touches().items():
+        touched.setdefault(oid, {})[agent_names[aid]] = time
+    column = {a.id: j for j, a in enumerate(agents)}
+    index = {r.id: i for i, r in enumerate(rows)}
+    own = np.zeros((len(rows), len(agents)))
+    sources = [["none"] * len(agents) for _ in rows]
+    belief_rows = tx.ownership() if only is None else [b for r in rows for b in tx.ownership(object_id=r.id)]
+    for b in belief_rows:
+        i, j = index[b.object_id], column[b.agent_id]
+        own[i, j], sources[i][j] = belief(b)
+    return Snapshot(
+        agents=tuple(a.name for a in agents),
+        objects=tuple(object_spec(r, categories.get(r.id, set()), touched.get(r.id, {}), now) for r in rows),
+        areas=tuple(Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.areas()),
+        ids=tuple(r.id for r in rows),
+        own=own,
+        sources=tuple(tuple(s) for s in sources),
+    )
+
+
+def after_claims(tx: Tx, agents: Sequence[str], now: float) -> None:
+    """Hook after claims about ``agents`` changed: re-predict priors, then re-infer posteriors.
+
+    Prediction (DESIGN 5) and inference (DESIGN 3) plug in here, honouring the settings flags
+    ``disabled.prediction`` and ``disabled.inference``; until then claims are used as they are.
+    """
+
+
+def after_permissions(tx: Tx, actions: Sequence[str], now: float) -> None:
+    """Hook after permissions changed: rule induction (DESIGN 4) and posterior inference plug in here."""

@@ -1,0 +1,63 @@
+"""What every use case receives: which store, what time it is, and who is speaking from where.
+
+:class:`AppContext` opens the store lazily (so commands that fail before touching it cost nothing)
+and hands out transactions. A *write* transaction appends the instruction to the event log first,
+inside the same transaction, so a failing command leaves neither its changes nor its log line.
+The CLI builds one context per process (``batch`` reuses it line after line) and passes ``now``
+explicitly: nothing here reads the environment or the clock.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    from ownctl.store.engine import Store
+    from ownctl.store.repo import Tx
+
+
+@dataclass
+class AppContext:
+    """A store reference plus the instruction's circumstances.
+
+    ``db``: ``--db`` as given (None = the default store); ``now``: store time in seconds;
+    ``interface``: "cli", "batch", "say", "run", ...; ``command``: the instruction as typed, for the
+    log; ``actor``: who gave it, if known.
+    """
+
+    db: str | None
+    now: float
+    interface: str = "cli"
+    command: str = ""
+    actor: str | None = None
+    _store: Store | None = field(default=None, repr=False)
+
+    def store(self, create: bool = False) -> Store:
+        """The open store (opened on first call; ``create`` allows creating an explicit store)."""
+        if self._store is None:
+            from ownctl.store.engine import locate, open_store
+
+            self._store = open_store(locate(self.db), create=create)
+        return self._store
+
+    @contextmanager
+    def read(self) -> Iterator[Tx]:
+        """A read-only transaction."""
+        with self.store().transaction(write=False) as tx:
+            yield tx
+
+    @contextmanager
+    def write(self, payload: dict[str, Any], actor: str | None = None) -> Iterator[Tx]:
+        """A write transaction whose first act is logging this instruction with ``payload``."""
+        with self.store().transaction(write=True) as tx:
+            tx.log(self.now, actor or self.actor, self.interface, self.command, payload)
+            yield tx
+
+    def close(self) -> None:
+        """Close the store if it was opened."""
+        if self._store is not None:
+            self._store.close()
+            self._store = None

@@ -1,0 +1,126 @@
+"""``check ACTION OBJ``: is the action permitted on the object, and what decided it (DESIGN section 3).
+
+Every step of the action (its prerequisites, then the action; ``Action.steps``) is decided on its
+own: the object-specific permission for that step when there is one (forbidden iff its value is at
+least 0.5), else the step's rules (forbidden iff P(some rule holds) >= the step's threshold).
+Object-targeted steps are always checked; target-less ones (release, goHome, ...) only when they
+have a permission or rules. The action is forbidden iff some step is; its ``p_forbidden`` is the
+maximum over the steps. Probabilities use the decision beliefs (posteriors).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from ownctl.app.beliefs import snapshot
+from ownctl.app.context import AppContext
+from ownctl.app.settings import to_config
+from ownctl.config import LearnConfig
+from ownctl.logic.prob import p_forbidden
+from ownctl.logic.rules import parse_rule
+from ownctl.logic.vocab import ACTIONS
+from ownctl.logic.vocab import action as check_action
+
+PERMISSION_CUT = LearnConfig().cover_threshold  # a permission value at or above this forbids
+
+
+@dataclass(frozen=True)
+class CheckReport:
+    """The answer of ``check``; ``data`` has DESIGN section 7's shape, ``reason`` is for people."""
+
+    data: dict[str, Any]
+    reason: str
+
+    @property
+    def forbidden(self) -> bool:
+        """True if the action is forbidden on the object."""
+        return bool(self.data["decision"] == "forbidden")
+
+
+def _step(step: str, permission: Any, rules: list[Any], frame: Any, threshold: float) -> dict[str, Any]:
+    parsed = [parse_rule(r.text) for r in rules]
+    per_rule = [
+        {"id": r.id, "text": r.text, "p": float(p_forbidden([rule], frame)[0])}
+        for r, rule in zip(rules, parsed, strict=False)
+    ]
+    p_rules = float(p_forbidden(parsed, frame)[0]) if parsed else 0.0
+    if permission is not None:
+        decided_by, p, forbidden = "permission", float(permission.value), permission.value >= PERMISSION_CUT
+    elif parsed:
+        decided_by, p, forbidden = "rules", p_rules, p_rules >= threshold
+    else:
+        decided_by, p, forbidden = "none", 0.0, False
+    return {
+        "action": step,
+        "decision": "forbidden" if forbidden else "permitted",
+        "decided_by": decided_by,
+        "p_forbidden": p,
+        "threshold": threshold,
+        "permission": None if permission is None else float(permission.value),
+        "permission_id": None if permission is None else permission.id,
+        "p_rules": p_rules,
+        "rules": per_rule,
+    }
+
+
+def _reason(name: str, obj: str, step: dict[str, Any]) -> str:
+    if step["decided_by"] == "permission":
+        verb = "forbidden" if step["decision"] == "forbidden" else "allowed"
+        return f"{step['action']} is {verb} on {obj} by permission {step['permission_id']}"
+    if step["decided_by"] == "rules":
+        op = ">=" if step["decision"] == "forbidden" else "<"
+        top = max(step["rules"], key=lambda r: r["p"])
+        return (
+            f"the rules of {step['action']} forbid it with p={step['p_forbidden']:.3g} {op} "
+            f"{step['threshold']:g} (strongest: rule {top['id']} '{top['text']}', p={top['p']:.3g})"
+        )
+    return f"no permission or rule speaks about {name} on {obj}"
+
+
+def check(ctx: AppContext, action: str, obj: str) -> CheckReport:
+    """Decide ``action`` on ``obj``; see the module docstring."""
+    act = check_action(action)
+    with ctx.read() as tx:
+        row = tx.object(obj)
+        settings = to_config(tx.settings())
+        snap = snapshot(tx, ctx.now, only=[obj])
+        frame = snap.frame()
+        permissions = {p.action: p for p in tx.permissions(row.id)}
+        steps = []
+        for name in act.steps:
+            rules = tx.rules(name)
+            if ACTIONS[name].target != "object" and not rules and name not in permissions:
+                continue
+            steps.append(_step(name, permissions.get(name), rules, frame, settings.threshold_for(name)))
+    own = [s for s in steps if s["action"] == action]
+    prereq = [s for s in steps if s["action"] != action]
+    forbidden_prereq = [s for s in prereq if s["decision"] == "forbidden"]
+    if own and own[0]["decision"] == "forbidden":
+        decided_by, reason = own[0]["decided_by"], _reason(action, obj, own[0])
+    elif forbidden_prereq:
+        first = forbidden_prereq[0]
+        decided_by = "prerequisite"
+        reason = f"its prerequisite {first['action']} is forbidden: {_reason(first['action'], obj, first)}"
+    else:
+        speaking = [s for s in own + prereq if s["decided_by"] != "none"]
+        decided_by = speaking[0]["decided_by"] if speaking else "none"
+        reason = (
+            _reason(action, obj, speaking[0]) if speaking else _reason(action, obj, {"decided_by": "none"})
+        )
+    decision = "forbidden" if (own and own[0]["decision"] == "forbidden") or forbidden_prereq else "permitted"
+    data = {
+        "action": action,
+        "object": obj,
+        "decision": decision,
+        "p_forbidden": max((s["p_forbidden"] for s in steps), default=0.0),
+        "threshold": settings.threshold_for(action),
+        "decided_by": decided_by,
+        "reason": reason,
+        "steps": steps,
+        "atoms": [
+            {"agent": a, "p": float(snap.own[0, j]), "source": snap.sources[0][j]}
+            for j, a in enumerate(snap.agents)
+        ],
+    }
+    return CheckReport(data, reason)

@@ -1,0 +1,160 @@
+"""Read-only views (owners, claims, permissions, rules, the log) and removing single items.
+
+Beliefs shown as ``p`` are the decision beliefs of :func:`ownctl.app.beliefs.decision_belief`.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ownctl.app.beliefs import decision_belief, snapshot
+from ownctl.app.context import AppContext
+from ownctl.app.settings import probability
+from ownctl.app.things import Done
+from ownctl.errors import OwnctlError
+from ownctl.logic.prob import p_forbidden
+from ownctl.logic.rules import parse_rule
+
+
+def owners(ctx: AppContext, obj: str) -> dict[str, Any]:
+    """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}]}``, likeliest
+    first; ``p`` and ``source`` are the decision belief."""
+    with ctx.read() as tx:
+        row = tx.object(obj)
+        names = {a.id: a.name for a in tx.agents()}
+        out = []
+        for b in tx.ownership(object_id=row.id):
+            p, source = decision_belief(b)
+            out.append(
+                {
+                    "agent": names[b.agent_id],
+                    "p": p,
+                    "source": source,
+                    "claim": b.claim_p,
+                    "prior": b.prior_p,
+                    "posterior": b.posterior_p,
+                }
+            )
+    out.sort(key=lambda o: (-o["p"], o["agent"]))
+    return {"object": obj, "owners": out}
+
+
+def owned_by(ctx: AppContext, agent: str, min_p: float = 0.5) -> list[dict[str, Any]]:
+    """The objects ``agent`` owns with probability >= ``min_p``, likeliest first."""
+    min_p = probability("--min", min_p)
+    with ctx.read() as tx:
+        who = tx.agent(agent)
+        names = {o.id: o.name for o in tx.objects()}
+        rows = [(names[b.object_id], *decision_belief(b)) for b in tx.ownership(agent_id=who.id)]
+    rows.sort(key=lambda r: (-r[1], r[0]))
+    return [{"object": o, "p": p, "source": s} for o, p, s in rows if p >= min_p]
+
+
+def list_claims(ctx: AppContext) -> list[dict[str, Any]]:
+    """Every stored claim."""
+    with ctx.read() as tx:
+        objects = {o.id: o.name for o in tx.objects()}
+        agents = {a.id: a.name for a in tx.agents()}
+        return [
+            {
+                "object": objects[b.object_id],
+                "agent": agents[b.agent_id],
+                "p": b.claim_p,
+                "speaker": b.claim_speaker,
+                "trust": b.claim_trust,
+                "time": b.claim_time,
+            }
+            for b in tx.ownership()
+            if b.claim_p is not None
+        ]
+
+
+def _permission_dict(p: Any, objects: dict[int, str]) -> dict[str, Any]:
+    sign = "forbid" if p.value >= 0.5 else "allow"
+    return {
+        "id": p.id,
+        "action": p.action,
+        "object": objects[p.object_id],
+        "value": p.value,
+        "text": f"{sign} {p.action} on {objects[p.object_id]}",
+        "speaker": p.speaker,
+        "time": p.time,
+    }
+
+
+def list_permissions(ctx: AppContext) -> list[dict[str, Any]]:
+    """Every object-specific permission, oldest first."""
+    with ctx.read() as tx:
+        objects = {o.id: o.name for o in tx.objects()}
+        return [_permission_dict(p, objects) for p in tx.permissions()]
+
+
+def remove_permission(ctx: AppContext, permission_id: int) -> Done:
+    """Forget one permission."""
+    with ctx.write({"op": "permission.remove", "id": permission_id}) as tx:
+        row = tx.permission(permission_id)
+        data = _permission_dict(row, {row.object_id: tx.object_by_id(row.object_id).name})  # type: ignore[union-attr]
+        tx.remove(row)
+    return Done(f"removed permission {permission_id} ({data['text']})", data)
+
+
+def list_rules(ctx: AppContext) -> list[dict[str, Any]]:
+    """Every rule with its soft accuracy on its action's stored permissions (None without any).
+
+    ``accuracy`` is the rule's own mean agreement ``1 - |value - P(rule holds)|`` over the
+    permissions of its action; ``set_accuracy`` is the same for the action's whole rule set.
+    """
+    with ctx.read() as tx:
+        rows = tx.rules()
+        permissions = tx.permissions()
+        objects = {o.id: o.name for o in tx.objects()}
+        wanted = sorted({objects[p.object_id] for p in permissions})
+        snap = snapshot(tx, ctx.now, only=wanted) if wanted else None
+    frame = snap.frame() if snap is not None else None
+    index = {name: i for i, name in enumerate(wanted)}
+    out = []
+    for row in rows:
+        rule = parse_rule(row.text)
+        mine = [p for p in permissions if p.action == row.action]
+        entry = {"id": row.id, "text": row.text, "action": row.action, "origin": row.origin}
+        entry.update(accuracy=None, set_accuracy=None, provenance=row.provenance, created=row.created)
+        if mine and frame is not None:
+            idx = [index[objects[p.object_id]] for p in mine]
+            sub = frame.take(idx)
+            values = np.array([p.value for p in mine])
+            whole = p_forbidden([parse_rule(r.text) for r in rows if r.action == row.action], sub)
+            entry["accuracy"] = float(1.0 - np.abs(values - p_forbidden([rule], sub)).mean())
+            entry["set_accuracy"] = float(1.0 - np.abs(values - whole).mean())
+        out.append(entry)
+    return out
+
+
+def remove_rule(ctx: AppContext, rule_id: int) -> Done:
+    """Forget one rule; refused while rules are frozen."""
+    with ctx.write({"op": "rule.remove", "id": rule_id}) as tx:
+        row = tx.rule(rule_id)
+        if tx.settings().get("frozen.rules"):
+            raise OwnctlError("rules are frozen: rules are not changed (ownctl unfreeze rules)")
+        text = row.text
+        tx.remove(row)
+    return Done(f"removed rule {rule_id}: {text}", {"id": rule_id, "text": text})
+
+
+def events(ctx: AppContext, limit: int | None = None) -> list[dict[str, Any]]:
+    """The last ``limit`` instructions of the event log, oldest first."""
+    if limit is not None and limit < 1:
+        raise OwnctlError(f"--limit must be at least 1, got {limit}")
+    with ctx.read() as tx:
+        return [
+            {
+                "id": e.id,
+                "time": e.time,
+                "actor": e.actor,
+                "interface": e.interface,
+                "command": e.command,
+                "payload": e.payload,
+            }
+            for e in tx.events(limit)
+        ]

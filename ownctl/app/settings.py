@@ -1,0 +1,72 @@
+"""The settings a store keeps (`ownctl config`, `freeze`, `disable`): keys, validation, defaults.
+
+Keys: ``threshold`` and ``threshold.ACTION`` (obedience thresholds in [0, 1]), ``trust`` (in [0, 1]),
+``frozen.perms`` / ``frozen.rules`` and ``disabled.inference`` / ``disabled.prediction`` (booleans).
+Stored values override the defaults of :class:`ownctl.config.Settings`.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from ownctl.config import Settings
+from ownctl.errors import BadValue, OwnctlError
+from ownctl.logic.vocab import ACTIONS
+
+FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.prediction")
+PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
+KEYS = (*PROBABILITIES, *FLAGS)
+DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust}
+TRUE = ("true", "yes", "on", "1")
+FALSE = ("false", "no", "off", "0")
+
+
+def check_key(key: str) -> str:
+    """``key`` if it is a settings key; else an error listing the valid keys."""
+    if key not in KEYS:
+        raise OwnctlError(f"unknown setting {key!r}; valid keys: {', '.join(KEYS)}", KEYS)
+    return key
+
+
+def probability(what: str, value: float | str) -> float:
+    """``value`` as a probability in [0, 1]; BadValue naming ``what`` for text, NaN or out-of-range."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise BadValue(f"{what} must be a number in [0, 1], got {value!r}") from None
+    if math.isnan(number) or not 0.0 <= number <= 1.0:
+        raise BadValue(f"{what} must be a number in [0, 1], got {value!r}")
+    return number
+
+
+def parse_value(key: str, text: str) -> Any:
+    """The typed value of ``text`` for ``key``; ``default`` means "remove the override" (None)."""
+    check_key(key)
+    if text == "default":
+        return None
+    if key in FLAGS:
+        if text.lower() in TRUE:
+            return True
+        if text.lower() in FALSE:
+            return False
+        raise BadValue(f"{key} must be true or false, got {text!r}", ("true", "false"))
+    return probability(key, text)
+
+
+def effective(stored: dict[str, Any]) -> dict[str, Any]:
+    """Every key with its value: stored, else default (per-action thresholds only when set)."""
+    out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k)) for k in ("threshold", "trust")}
+    out.update({k: bool(stored.get(k, False)) for k in FLAGS})
+    out.update({k: v for k, v in sorted(stored.items()) if k.startswith("threshold.")})
+    return out
+
+
+def to_config(stored: dict[str, Any]) -> Settings:
+    """The core's :class:`Settings` from the stored keys."""
+    thresholds = {k.split(".", 1)[1]: float(v) for k, v in stored.items() if k.startswith("threshold.")}
+    return Settings(
+        threshold=float(stored.get("threshold", DEFAULTS["threshold"])),
+        thresholds=thresholds,
+        trust=float(stored.get("trust", DEFAULTS["trust"])),
+    )

@@ -1,0 +1,100 @@
+"""``world load FILE`` and ``world export``: TOML worlds and scenarios (DESIGN section 11).
+
+Loading adds the file's agents (existing agents of the same name are reused), areas and objects
+(duplicates are errors), turns interaction ages into absolute times (``now - age``), and stores the
+ground truth (true owners, true norms) in its own tables. Export writes the same format back, ages
+measured at ``now``; ground truth comes from the truth tables, never from beliefs.
+"""
+
+from __future__ import annotations
+
+import tomllib
+from pathlib import Path
+from typing import Any
+
+from ownctl.app.beliefs import object_spec
+from ownctl.app.context import AppContext
+from ownctl.app.things import Done
+from ownctl.errors import BadValue, OwnctlError
+from ownctl.world.model import Area, World
+from ownctl.world.spec import to_toml, world_from_dict, world_to_dict
+
+
+def read_world(path: str, seed: int = 0) -> World:
+    """Parse and validate a world/scenario file; ``seed`` feeds a ``[generator]`` section."""
+    import numpy as np
+
+    source = Path(path)
+    try:
+        text = source.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise OwnctlError(f"cannot read world file {path}: {getattr(exc, 'strerror', None) or exc}") from None
+    try:
+        data = tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise BadValue(f"{path}: not valid TOML: {exc}") from None
+    return world_from_dict(data, str(path), np.random.default_rng(seed))
+
+
+def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
+    """Add the world in ``path`` to the store, in one transaction."""
+    world = read_world(path, seed)
+    payload = {"op": "world.load", "file": str(path), "world": world.name, "seed": seed}
+    with ctx.write(payload) as tx:
+        agents = {a.name: a.id for a in tx.agents()}
+        for name in world.agents:
+            if name not in agents:
+                agents[name] = tx.add_agent(name, ctx.now).id
+        for area in world.areas:
+            tx.add_area(area.name, area.box)
+        truth: list[tuple[int, int, float]] = []
+        for spec in world.objects:
+            x, y, z = spec.position if spec.position is not None else (None, None, None)
+            row = tx.add_object(spec.name, ctx.now, color=spec.color, x=x, y=y, z=z)
+            tx.set_categories(row.id, spec.categories)
+            for agent, age in spec.last_touch.items():
+                tx.touch(row.id, agents[agent], ctx.now - age)
+            truth += [(row.id, agents[a], p) for a, p in world.owners.get(spec.name, {}).items()]
+        tx.set_truth(truth, world.norms)
+    counts = {"agents": len(world.agents), "areas": len(world.areas), "objects": len(world.objects)}
+    listing = ", ".join(f"{n} {k}" for k, n in counts.items())
+    return Done(
+        f"loaded {world.name or path}: {listing}, {len(world.norms)} true norms",
+        {"world": world.name, **counts, "norms": len(world.norms)},
+    )
+
+
+def current_world(ctx: AppContext, name: str = "") -> World:
+    """The store's world with its ground truth, interaction ages measured at ``ctx.now``."""
+    with ctx.read() as tx:
+        agents = {a.id: a.name for a in tx.agents()}
+        categories = tx.categories()
+        touched: dict[int, dict[str, float]] = {}
+        for (oid, aid), t in tx.touches().items():
+            touched.setdefault(oid, {})[agents[aid]] = t
+        rows = tx.objects()
+        objects = tuple(
+            object_spec(o, categories.get(o.id, set()), touched.get(o.id, {}), ctx.now) for o in rows
+        )
+        names = {o.id: o.name for o in rows}
+        owners: dict[str, dict[str, float]] = {}
+        for (oid, aid), p in tx.truth_owners().items():
+            owners.setdefault(names[oid], {})[agents[aid]] = p
+        return World(
+            name=name,
+            agents=tuple(agents[i] for i in sorted(agents, key=lambda i: agents[i])),
+            objects=objects,
+            areas=tuple(Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.areas()),
+            norms=tuple(tx.truth_norms()),
+            owners=owners,
+        )
+
+
+def export(ctx: AppContext, name: str = "") -> dict[str, Any]:
+    """The store's world as a world-file dict (see :func:`export_toml` for the text)."""
+    return world_to_dict(current_world(ctx, name))
+
+
+def export_toml(data: dict[str, Any]) -> str:
+    """TOML text of an :func:`export` result."""
+    return to_toml(data)

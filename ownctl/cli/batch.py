@@ -1,0 +1,84 @@
+"""``ownctl batch FILE|-``: many instructions, one process, one open store.
+
+Each non-blank line (``#`` starts a comment) is an ownctl command line without the ``ownctl``
+word, e.g. ``claim wallet alexis --p 0.75``. Lines run in order, each in its own transaction, so the
+lines before a failing one stay done. The first failing line stops the batch: its error is printed
+as ``ownctl: FILE:LINE: message`` and the batch exits with that line's code (1 user error, 2 usage
+error). A ``check`` answering "forbidden" (exit 3) is an answer, not a failure: the batch goes on.
+"""
+
+from __future__ import annotations
+
+import shlex
+import sys
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from ownctl.cli.common import JsonOpt, QuietOpt, State, emit
+from ownctl.errors import OwnctlError
+
+EXIT_FORBIDDEN = 3
+
+
+def _lines(file: str) -> list[str]:
+    if file == "-":
+        return sys.stdin.read().splitlines()
+    try:
+        return Path(file).read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError) as exc:
+        raise OwnctlError(f"cannot read batch file {file}: {getattr(exc, 'strerror', None) or exc}") from None
+
+
+def _words(line: str, where: str) -> list[str]:
+    try:
+        words = shlex.split(line, comments=True)
+    except ValueError as exc:
+        raise OwnctlError(f"{where}: cannot split the line into words: {exc}") from None
+    if words and words[0] == "ownctl":
+        words = words[1:]
+    if words and words[0].startswith("--db"):
+        raise OwnctlError(f"{where}: --db is not allowed inside a batch (give it to the batch command)")
+    if words and words[0] == "batch":
+        raise OwnctlError(f"{where}: a batch cannot run another batch")
+    return words
+
+
+def batch(
+    ctx: typer.Context,
+    file: Annotated[
+        str, typer.Argument(metavar="FILE|-", help="The instructions, one per line; - reads stdin.")
+    ],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Run one instruction per line, in one process.
+
+    Each line is its own transaction; the first failing line stops the batch (exit 1, or 2 for a
+    usage error) and is named as FILE:LINE. Blank lines and # comments are skipped.
+    """
+    from ownctl.cli.main import command
+
+    state = ctx.find_root().obj
+    assert isinstance(state, State)
+    name = "stdin" if file == "-" else file
+    ran = 0
+    for number, line in enumerate(_lines(file), start=1):
+        where = f"{name}:{number}"
+        words = _words(line, where)
+        if not words:
+            continue
+        state.interface, state.prefix = "batch", f"{where}: "
+        try:
+            code = command().main(args=words, prog_name="ownctl", standalone_mode=False, obj=state)
+        except typer.TyperException as exc:  # a usage error of the line (click's, vendored by typer)
+            message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
+            typer.echo(f"ownctl: {where}: {' '.join(message.split())}", err=True)
+            raise typer.Exit(getattr(exc, "exit_code", 2)) from None
+        finally:
+            state.interface, state.prefix = "cli", ""
+        if code not in (None, 0, EXIT_FORBIDDEN):
+            raise typer.Exit(code)
+        ran += 1
+    emit({"file": name, "ran": ran}, json_out, quiet, f"batch: ran {ran} instructions from {name}")

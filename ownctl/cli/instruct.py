@@ -1,0 +1,96 @@
+"""Instructions: ``claim``, ``claims list``, ``forbid`` and ``allow`` (on an object, or if a condition)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Annotated
+
+import typer
+
+from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
+from ownctl.errors import RuleSyntaxError
+
+if TYPE_CHECKING:
+    from ownctl.app.things import Done
+
+claims = typer.Typer(help="Ownership claims.", no_args_is_help=True)
+
+SpeakerOpt = Annotated[str | None, typer.Option("--as", help="Who says it (kept with the instruction).")]
+Words = Annotated[list[str] | None, typer.Argument(help="'on OBJECT', or 'if LITERAL [and LITERAL]...'.")]
+
+
+def claim(
+    ctx: typer.Context,
+    obj: Annotated[str, typer.Argument(metavar="OBJECT")],
+    agent: Annotated[str, typer.Argument(metavar="AGENT")],
+    p: Annotated[float, typer.Option("--p", help="How sure the speaker is, in [0, 1].")] = 1.0,
+    negated: Annotated[
+        bool, typer.Option("--not", help="The agent does NOT own it (stores 1 - trust*p).")
+    ] = False,
+    only: Annotated[
+        bool, typer.Option("--only", help="Exclusive: every other agent's claim becomes 0.")
+    ] = False,
+    speaker: SpeakerOpt = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Claim that AGENT owns OBJECT ("that's mine"), weighted by the trust setting."""
+    from ownctl.app import instruct
+
+    done = instruct.add_claim(app_ctx(ctx), obj, agent, p, negated, only, speaker)
+    emit(done.data, json_out, quiet, done.message)
+
+
+@claims.command("list")
+def claims_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """List the stored claims."""
+    from ownctl.app import query
+
+    rows = query.list_claims(app_ctx(ctx))
+    cells = [[r["object"], r["agent"], r["p"], r["speaker"], r["trust"], r["time"]] for r in rows]
+    emit(rows, json_out, quiet, table("claims", ["object", "agent", "p", "speaker", "trust", "time"], cells))
+
+
+def _instruct(
+    ctx: typer.Context, sign: str, action: str, words: list[str], p: float, speaker: str | None
+) -> Done:
+    from ownctl.app import instruct
+
+    if words and words[0] == "on":
+        if len(words) != 2:
+            raise RuleSyntaxError(f"'{sign} {action} on' takes exactly one object, got {words[1:] or 'none'}")
+        value = p if sign == "forbid" else 1.0 - p
+        return instruct.add_permission(app_ctx(ctx), action, words[1], value, speaker)
+    return instruct.add_norm(app_ctx(ctx), " ".join([sign, action, *words]), speaker)
+
+
+def forbid(
+    ctx: typer.Context,
+    action: Annotated[str, typer.Argument(metavar="ACTION")],
+    words: Words = None,
+    p: Annotated[float, typer.Option("--p", help="With 'on': how sure, in [0, 1] (stored value p).")] = 1.0,
+    speaker: SpeakerOpt = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Forbid ACTION on one object ('on OBJECT') or whenever a condition holds ('if ...').
+
+    Examples: ownctl forbid trash on wallet;  ownctl forbid pickUp if ownedBy xuan and not isColored red
+    """
+    done = _instruct(ctx, "forbid", action, words or [], p, speaker)
+    emit(done.data, json_out, quiet, done.message)
+
+
+def allow(
+    ctx: typer.Context,
+    action: Annotated[str, typer.Argument(metavar="ACTION")],
+    words: Words = None,
+    p: Annotated[
+        float, typer.Option("--p", help="With 'on': how sure, in [0, 1] (stored value 1 - p).")
+    ] = 1.0,
+    speaker: SpeakerOpt = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Allow ACTION on one object ('on OBJECT'), or state an allow norm ('if ...', applied by the learner)."""
+    done = _instruct(ctx, "allow", action, words or [], p, speaker)
+    emit(done.data, json_out, quiet, done.message)

@@ -1,0 +1,93 @@
+"""The ``ownctl`` command: the root group, its global options, and every command registered.
+
+Startup stays light: this module imports typer, click and the CLI modules only; every command
+imports its ``ownctl.app`` module (and with it SQLAlchemy, numpy) when it runs.
+"""
+
+from __future__ import annotations
+
+from functools import lru_cache
+from typing import Annotated, Any
+
+import typer
+
+from ownctl import __version__
+from ownctl.cli import admin, instruct, query, things
+from ownctl.cli.batch import batch
+from ownctl.cli.common import OwnctlGroup, State, clock, command_text
+
+app = typer.Typer(
+    cls=OwnctlGroup,
+    name="ownctl",
+    help="A robot's ownership conscience: who owns what, which actions are forbidden, and why.",
+    no_args_is_help=True,
+    add_completion=False,
+    pretty_exceptions_enable=False,
+)
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"ownctl {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def main(
+    ctx: typer.Context,
+    db: Annotated[
+        str | None,
+        typer.Option(
+            "--db",
+            envvar="OWNCTL_DB",
+            metavar="URL",
+            help="The store: any SQLAlchemy URL or a SQLite file path (default: the user data directory).",
+        ),
+    ] = None,
+    version: Annotated[
+        bool, typer.Option("--version", callback=_version, is_eager=True, help="Print the version and exit.")
+    ] = False,
+) -> None:
+    """Global options. The store clock is OWNCTL_NOW (seconds) when set, else the wall clock."""
+    text = command_text(ctx.meta.get("ownctl.args", []))
+    if isinstance(ctx.obj, State):  # a line of a batch: same store, fresh clock
+        ctx.obj.now, ctx.obj.command = clock(), text
+        return
+    state = State(db=db or None, now=clock(), command=text)
+    ctx.obj = state
+    ctx.call_on_close(state.close)
+
+
+app.add_typer(things.world, name="world")
+app.add_typer(things.agent, name="agent")
+app.add_typer(things.obj, name="object")
+app.add_typer(things.area, name="area")
+app.add_typer(instruct.claims, name="claims")
+app.add_typer(query.rules, name="rules")
+app.add_typer(query.perms, name="perms")
+app.add_typer(admin.db, name="db")
+app.add_typer(admin.config, name="config")
+app.command("init")(admin.init)
+app.command("claim")(instruct.claim)
+app.command("forbid")(instruct.forbid)
+app.command("allow")(instruct.allow)
+app.command("check")(query.check)
+app.command("owners")(query.owners)
+app.command("log")(query.log)
+app.command("reset")(admin.reset)
+app.command("freeze")(admin.freeze)
+app.command("unfreeze")(admin.unfreeze)
+app.command("disable")(admin.disable)
+app.command("enable")(admin.enable)
+app.command("batch")(batch)
+
+
+@lru_cache(maxsize=1)
+def command() -> Any:
+    """The click command behind ``app`` (built once; ``batch`` runs every line through it)."""
+    return typer.main.get_command(app)
+
+
+def run() -> None:
+    """Console-script entry point."""
+    app(prog_name="ownctl")

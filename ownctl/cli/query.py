@@ -1,0 +1,147 @@
+"""Queries: ``check``, ``owners``, ``rules``, ``perms`` and ``log``."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+
+rules = typer.Typer(help="The forbid rules (given or learned).", no_args_is_help=True)
+perms = typer.Typer(help="Object-specific permissions.", no_args_is_help=True)
+
+EXIT_FORBIDDEN = 3
+
+
+def check(
+    ctx: typer.Context,
+    action: Annotated[str, typer.Argument(metavar="ACTION")],
+    obj: Annotated[str, typer.Argument(metavar="OBJECT")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Is ACTION permitted on OBJECT? Prints the decision and what decided it; exit 3 if forbidden."""
+    from ownctl.app import decide
+
+    report = decide.check(app_ctx(ctx), action, obj)
+    data = report.data
+
+    def human() -> None:
+        typer.echo(
+            f"{data['decision']}: {action} {obj} (p_forbidden={data['p_forbidden']:.3g}); {report.reason}"
+        )
+        cells = [
+            [
+                s["action"],
+                s["decision"],
+                s["decided_by"],
+                s["p_forbidden"],
+                s["threshold"],
+                [r["id"] for r in s["rules"]],
+            ]
+            for s in data["steps"]
+        ]
+        if len(cells) > 1:
+            table(None, ["step", "decision", "decided by", "p_forbidden", "threshold", "rules"], cells)()
+
+    emit(data, json_out, quiet, human)
+    if report.forbidden:
+        raise typer.Exit(EXIT_FORBIDDEN)
+
+
+def owners(
+    ctx: typer.Context,
+    obj: Annotated[
+        str | None, typer.Argument(metavar="[OBJECT]", help="The object whose owners to show.")
+    ] = None,
+    agent: Annotated[
+        str | None, typer.Option("--agent", help="Instead: the objects this agent owns.")
+    ] = None,
+    min_p: Annotated[float, typer.Option("--min", help="With --agent: the least probability listed.")] = 0.5,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Who probably owns OBJECT; or, with --agent, which objects AGENT probably owns."""
+    from ownctl.app import query
+
+    if (obj is None) == (agent is None):
+        raise typer.BadParameter("give either an OBJECT or --agent AGENT")
+    if agent is not None:
+        rows = query.owned_by(app_ctx(ctx), agent, min_p)
+        emit(
+            rows,
+            json_out,
+            quiet,
+            table(f"owned by {agent}", ["object", "p", "source"], [list(r.values()) for r in rows]),
+        )
+        return
+    data = query.owners(app_ctx(ctx), obj)  # type: ignore[arg-type]
+    cells = [
+        [o["agent"], o["p"], o["source"], o["claim"], o["prior"], o["posterior"]] for o in data["owners"]
+    ]
+    emit(
+        data,
+        json_out,
+        quiet,
+        table(f"owners of {obj}", ["agent", "p", "source", "claim", "prior", "posterior"], cells),
+    )
+
+
+@rules.command("list")
+def rules_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """List the rules in canonical text, with their soft accuracy on the stored permissions."""
+    from ownctl.app import query
+
+    rows = query.list_rules(app_ctx(ctx))
+    cells = [[r["id"], r["text"], r["origin"], r["accuracy"]] for r in rows]
+    emit(rows, json_out, quiet, table("rules", ["id", "rule", "origin", "accuracy"], cells))
+
+
+@rules.command("remove")
+def rules_remove(
+    ctx: typer.Context, rule_id: int, json_out: JsonOpt = False, quiet: QuietOpt = False
+) -> None:
+    """Forget one rule (by id, see rules list)."""
+    from ownctl.app import query
+
+    done = query.remove_rule(app_ctx(ctx), rule_id)
+    emit(done.data, json_out, quiet, done.message)
+
+
+@perms.command("list")
+def perms_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """List the object-specific permissions."""
+    from ownctl.app import query
+
+    rows = query.list_permissions(app_ctx(ctx))
+    cells = [[r["id"], r["text"], r["value"], r["speaker"]] for r in rows]
+    emit(rows, json_out, quiet, table("permissions", ["id", "permission", "value", "speaker"], cells))
+
+
+@perms.command("remove")
+def perms_remove(
+    ctx: typer.Context, perm_id: int, json_out: JsonOpt = False, quiet: QuietOpt = False
+) -> None:
+    """Forget one permission (by id, see perms list)."""
+    from ownctl.app import query
+
+    done = query.remove_permission(app_ctx(ctx), perm_id)
+    emit(done.data, json_out, quiet, done.message)
+
+
+def log(
+    ctx: typer.Context,
+    limit: Annotated[int | None, typer.Option("--limit", "-n", help="Only the last N instructions.")] = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Show the event log: every instruction, who gave it, when and from which interface."""
+    from ownctl.app import query
+
+    rows = query.events(app_ctx(ctx), limit)
+    cells = [[r["id"], r["time"], r["actor"], r["interface"], r["command"]] for r in rows]
+    emit(rows, json_out, quiet, table("log", ["id", "time", "actor", "via", "instruction"], cells))
+
+
+__all__ = ["check", "fmt", "log", "owners", "perms", "rules"]

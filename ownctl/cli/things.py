@@ -1,0 +1,223 @@
+"""``ownctl world|agent|object|area ...``: what exists (thin: parse, call one app function, render)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+
+world = typer.Typer(
+    help="Load and export whole worlds (TOML files of DESIGN section 11).", no_args_is_help=True
+)
+agent = typer.Typer(help="Agents: the possible owners.", no_args_is_help=True)
+obj = typer.Typer(
+    help="Objects and their percepts (colour, position, categories, interactions).", no_args_is_help=True
+)
+area = typer.Typer(help="Named box areas on the table plane.", no_args_is_help=True)
+
+ColorOpt = Annotated[str | None, typer.Option("--color", help="Colour name ('none' clears it).")]
+PosOpt = Annotated[str | None, typer.Option("--pos", help="Position X,Y[,Z] in metres ('none' clears it).")]
+CategoryOpt = Annotated[
+    list[str] | None, typer.Option("--category", help="A category (repeatable; 'none' clears).")
+]
+
+
+@world.command("load")
+def world_load(
+    ctx: typer.Context,
+    file: Annotated[str, typer.Argument(help="World or scenario TOML file.")],
+    seed: Annotated[int, typer.Option(help="Seed for a [generator] section.")] = 0,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Add a world's agents, areas, objects and ground truth to the store ([[steps]] are ignored)."""
+    from ownctl.app import worldfile
+
+    done = worldfile.load(app_ctx(ctx), file, seed)
+    emit(done.data, json_out, quiet, done.message)
+
+
+@world.command("export")
+def world_export(
+    ctx: typer.Context,
+    output: Annotated[
+        Path | None, typer.Option("--output", "-o", help="Write to this file, not stdout.")
+    ] = None,
+    name: Annotated[str, typer.Option(help="The world's name in the file.")] = "",
+    json_out: JsonOpt = False,
+) -> None:
+    """Print the store's world (agents, areas, objects, ground truth) as TOML, or JSON with --json."""
+    import json
+
+    from ownctl.app import worldfile
+
+    data = worldfile.export(app_ctx(ctx), name)
+    text = json.dumps(data) + "\n" if json_out else worldfile.export_toml(data)
+    if output is None:
+        typer.echo(text, nl=False)
+    else:
+        output.write_text(text, encoding="utf-8")
+
+
+@agent.command("add")
+def agent_add(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """Introduce an agent (a possible owner)."""
+    from ownctl.app import things
+
+    done = things.add_agent(app_ctx(ctx), name)
+    emit(done.data, json_out, quiet, done.message)
+
+
+@agent.command("list")
+def agent_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """List the agents."""
+    from ownctl.app import things
+
+    rows = things.list_agents(app_ctx(ctx))
+    emit(
+        rows,
+        json_out,
+        quiet,
+        table("agents", ["name", "objects touched"], [[r["name"], r["touched"]] for r in rows]),
+    )
+
+
+@agent.command("remove")
+def agent_remove(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """Forget an agent and every belief about it (refused while a rule names it)."""
+    from ownctl.app import things
+
+    done = things.remove_agent(app_ctx(ctx), name)
+    emit(done.data, json_out, quiet, done.message)
+
+
+@obj.command("add")
+def object_add(
+    ctx: typer.Context,
+    name: str,
+    color: ColorOpt = None,
+    pos: PosOpt = None,
+    category: CategoryOpt = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Add an object with its percepts."""
+    from ownctl.app import things
+
+    done = things.add_object(app_ctx(ctx), name, color, pos, category or [])
+    emit(done.data, json_out, quiet, done.message)
+
+
+@obj.command("set")
+def object_set(
+    ctx: typer.Context,
+    name: str,
+    color: ColorOpt = None,
+    pos: PosOpt = None,
+    category: CategoryOpt = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Change an object's percepts (only those given; --category replaces the set)."""
+    from ownctl.app import things
+
+    done = things.set_object(app_ctx(ctx), name, color, pos, category or [])
+    emit(done.data, json_out, quiet, done.message)
+
+
+@obj.command("list")
+def object_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """List the objects and their percepts (interaction times are absolute store times)."""
+    from ownctl.app import things
+
+    rows = things.list_objects(app_ctx(ctx))
+    cells = [[r["name"], r["color"], r["position"], r["categories"], r["last_touch"]] for r in rows]
+    emit(
+        rows,
+        json_out,
+        quiet,
+        table("objects", ["name", "colour", "position", "categories", "last touch"], cells),
+    )
+
+
+@obj.command("show")
+def object_show(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """Show one object: percepts, permissions and who probably owns it."""
+    from ownctl.app import things
+
+    data = things.show_object(app_ctx(ctx), name)
+
+    def human() -> None:
+        for key in ("name", "color", "position", "categories", "last_touch"):
+            typer.echo(f"{key:11} {fmt(data[key]) if data[key] not in (None, [], {}) else '-'}")
+        for p in data["permissions"]:
+            typer.echo(f"permission  {p['id']}: {p['action']} = {fmt(p['value'])}")
+        table(None, ["agent", "p", "source"], [[o["agent"], o["p"], o["source"]] for o in data["owners"]])()
+
+    emit(data, json_out, quiet, human)
+
+
+@obj.command("remove")
+def object_remove(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """Forget an object with its beliefs and permissions."""
+    from ownctl.app import things
+
+    done = things.remove_object(app_ctx(ctx), name)
+    emit(done.data, json_out, quiet, done.message)
+
+
+@obj.command("touch")
+def object_touch(
+    ctx: typer.Context,
+    name: str,
+    by: Annotated[str, typer.Option("--by", help="The agent who interacted with the object.")],
+    at: Annotated[float | None, typer.Option("--at", help="Absolute store time (default: now).")] = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Record that an agent interacted with an object (a percept of ownership prediction)."""
+    from ownctl.app import things
+
+    done = things.touch(app_ctx(ctx), name, by, at)
+    emit(done.data, json_out, quiet, done.message)
+
+
+@area.command("add")
+def area_add(
+    ctx: typer.Context,
+    name: str,
+    box: Annotated[str, typer.Option("--box", help="X0,Y0,X1,Y1 in workspace metres.")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Add a named box area."""
+    from ownctl.app import things
+
+    done = things.add_area(app_ctx(ctx), name, box)
+    emit(done.data, json_out, quiet, done.message)
+
+
+@area.command("list")
+def area_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """List the areas."""
+    from ownctl.app import things
+
+    rows = things.list_areas(app_ctx(ctx))
+    emit(
+        rows,
+        json_out,
+        quiet,
+        table("areas", ["name", "box (x0, y0, x1, y1)"], [[r["name"], r["box"]] for r in rows]),
+    )
+
+
+@area.command("remove")
+def area_remove(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """Forget an area (refused while a rule names it)."""
+    from ownctl.app import things
+
+    done = things.remove_area(app_ctx(ctx), name)
+    emit(done.data, json_out, quiet, done.message)

@@ -1,0 +1,191 @@
+"""The store's tables as SQLAlchemy 2 typed ORM models (DESIGN section 6).
+
+The schema is created and changed only by the Alembic revisions in ``migrations/versions/``; these
+models describe the head revision (a test compares them). Times are absolute seconds on the store's
+clock. Ground truth (``truth_owners``, ``truth_norms``) is kept in its own tables, read only by the
+simulated instructor and by metrics, never by belief code.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from sqlalchemy import JSON, Float, ForeignKey, Integer, MetaData, String, Text, UniqueConstraint
+from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
+
+#: Every constraint gets a predictable name, so batch-mode migrations can drop and alter them.
+NAMING_CONVENTION = {
+    "ix": "ix_%(column_0_label)s",
+    "uq": "uq_%(table_name)s_%(column_0_name)s",
+    "ck": "ck_%(table_name)s_%(constraint_name)s",
+    "fk": "fk_%(table_name)s_%(column_0_name)s_%(referred_table_name)s",
+    "pk": "pk_%(table_name)s",
+}
+
+#: The marker row that identifies an ownctl store (table ``ownctl_store``).
+APPLICATION = "ownctl"
+
+NAME = 64  # length of a name column (the naming rule allows 64 characters)
+
+
+class Base(DeclarativeBase):
+    """Declarative base with the naming convention."""
+
+    metadata = MetaData(naming_convention=NAMING_CONVENTION)
+    type_annotation_map = {dict[str, Any]: JSON, list[Any]: JSON}
+
+
+class StoreMarker(Base):
+    """One row saying "this database is an ownctl store"; a database without it is refused."""
+
+    __tablename__ = "ownctl_store"
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    application: Mapped[str] = mapped_column(String(32))
+    created: Mapped[float] = mapped_column(Float)
+
+
+class Agent(Base):
+    """A possible owner, addressed by a unique name."""
+
+    __tablename__ = "agents"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    name: Mapped[str] = mapped_column(String(NAME), unique=True)
+    created: Mapped[float] = mapped_column(Float)
+
+
+class Object(Base):
+    """An object and its crisp percepts; ``extra`` holds free-form percepts for later features."""
+
+    __tablename__ = "objects"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    name: Mapped[str] = mapped_column(String(NAME), unique=True)
+    color: Mapped[str | None] = mapped_column(String(NAME))
+    x: Mapped[float | None] = mapped_column(Float)
+    y: Mapped[float | None] = mapped_column(Float)
+    z: Mapped[float | None] = mapped_column(Float)
+    extra: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)
+    created: Mapped[float] = mapped_column(Float)
+
+
+class Category(Base):
+    """``inCategory(object, category)`` facts."""
+
+    __tablename__ = "object_categories"
+    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"), primary_key=True)
+    category: Mapped[str] = mapped_column(String(NAME), primary_key=True)
+
+
+class Touch(Base):
+    """The last time (absolute, store clock) an agent interacted with an object."""
+
+    __tablename__ = "touches"
+    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"), primary_key=True)
+    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
+    time: Mapped[float] = mapped_column(Float)
+
+
+class Area(Base):
+    """A named axis-aligned box ``(x0, y0, x1, y1)`` on the table plane."""
+
+    __tablename__ = "areas"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    name: Mapped[str] = mapped_column(String(NAME), unique=True)
+    x0: Mapped[float] = mapped_column(Float)
+    y0: Mapped[float] = mapped_column(Float)
+    x1: Mapped[float] = mapped_column(Float)
+    y1: Mapped[float] = mapped_column(Float)
+
+
+class Ownership(Base):
+    """Beliefs about ``ownedBy(object, agent)``: the claim, the prior and the posterior, each nullable.
+
+    One row exists for every (object, agent) pair (created with the object or the agent), so beliefs
+    for many objects are written with one bulk UPDATE by primary key.
+    """
+
+    __tablename__ = "ownership"
+    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"), primary_key=True)
+    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
+    claim_p: Mapped[float | None] = mapped_column(Float)
+    claim_speaker: Mapped[str | None] = mapped_column(String(NAME))
+    claim_trust: Mapped[float | None] = mapped_column(Float)
+    claim_time: Mapped[float | None] = mapped_column(Float)
+    prior_p: Mapped[float | None] = mapped_column(Float)
+    prior_source: Mapped[str | None] = mapped_column(String(32))
+    prior_time: Mapped[float | None] = mapped_column(Float)
+    posterior_p: Mapped[float | None] = mapped_column(Float)
+    posterior_source: Mapped[str | None] = mapped_column(String(32))
+    posterior_time: Mapped[float | None] = mapped_column(Float)
+
+
+class Permission(Base):
+    """``forbid|allow ACTION on OBJECT``: value 1.0 forbids, 0.0 allows (values between are soft)."""
+
+    __tablename__ = "permissions"
+    __table_args__ = (UniqueConstraint("action", "object_id"),)
+    id: Mapped[int] = mapped_column(primary_key=True)
+    action: Mapped[str] = mapped_column(String(32))
+    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"))
+    value: Mapped[float] = mapped_column(Float)
+    speaker: Mapped[str | None] = mapped_column(String(NAME))
+    time: Mapped[float] = mapped_column(Float)
+
+
+class RuleRow(Base):
+    """A forbid rule in canonical text; ``origin`` is "given" or "learned"."""
+
+    __tablename__ = "rules"
+    __table_args__ = (UniqueConstraint("action", "text"),)
+    id: Mapped[int] = mapped_column(primary_key=True)
+    action: Mapped[str] = mapped_column(String(32))
+    text: Mapped[str] = mapped_column(Text)
+    origin: Mapped[str] = mapped_column(String(16))
+    provenance: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)
+    created: Mapped[float] = mapped_column(Float)
+
+
+class Setting(Base):
+    """One setting: ``key`` -> JSON value (thresholds, trust, frozen and disabled flags)."""
+
+    __tablename__ = "settings"
+    key: Mapped[str] = mapped_column(String(64), primary_key=True)
+    value: Mapped[Any] = mapped_column(JSON)
+
+
+class TruthOwner(Base):
+    """Ground truth of a simulated world: the true P(ownedBy(object, agent))."""
+
+    __tablename__ = "truth_owners"
+    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"), primary_key=True)
+    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
+    p: Mapped[float] = mapped_column(Float)
+
+
+class TruthNorm(Base):
+    """Ground truth of a simulated world: a true norm, as text."""
+
+    __tablename__ = "truth_norms"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    text: Mapped[str] = mapped_column(Text, unique=True)
+
+
+class Conversation(Base):
+    """The conversation context (one row, id 1): speaker, current target, last refusal."""
+
+    __tablename__ = "context"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    speaker: Mapped[str | None] = mapped_column(String(NAME))
+    target_id: Mapped[int | None] = mapped_column(ForeignKey("objects.id", ondelete="SET NULL"))
+    last_refusal: Mapped[dict[str, Any] | None] = mapped_column(JSON)
+
+
+class Event(Base):
+    """Append-only log of every instruction: who, when, from which interface, what."""
+
+    __tablename__ = "events"
+    id: Mapped[int] = mapped_column(primary_key=True)
+    time: Mapped[float] = mapped_column(Float)
+    actor: Mapped[str | None] = mapped_column(String(NAME))
+    interface: Mapped[str] = mapped_column(String(16))
+    command: Mapped[str] = mapped_column(Text)
+    payload: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)

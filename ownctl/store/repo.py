@@ -1,0 +1,315 @@
+"""The repository: every read and write the application layer makes, on one open transaction.
+
+:class:`Tx` wraps a SQLAlchemy session; the app layer never sees SQL. Lookups by name raise
+:class:`UnknownName` listing the known names; adding a taken name raises :class:`DuplicateName`.
+Beliefs about many (object, agent) pairs are written with one bulk UPDATE by primary key.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Sequence
+from typing import Any
+
+from sqlalchemy import delete, func, insert, select, update
+from sqlalchemy.orm import Session
+
+from ownctl.errors import DuplicateName, UnknownName
+from ownctl.store.models import (
+    Agent,
+    Area,
+    Base,
+    Category,
+    Conversation,
+    Event,
+    Object,
+    Ownership,
+    Permission,
+    RuleRow,
+    Setting,
+    Touch,
+    TruthNorm,
+    TruthOwner,
+)
+
+BELIEF_KINDS = ("claim", "prior", "posterior")
+
+
+class Tx:
+    """Typed access to the store inside one transaction."""
+
+    def __init__(self, session: Session) -> None:
+        self.session = session
+
+    # -- agents ---------------------------------------------------------------------------------
+    def agents(self) -> list[Agent]:
+        """Every agent, by name."""
+        return list(self.session.scalars(select(Agent).order_by(Agent.name)))
+
+    def agent(self, name: str) -> Agent:
+        """The agent called ``name``."""
+        row = self.session.scalar(select(Agent).where(Agent.name == name))
+        if row is None:
+            raise UnknownName("agent", name, self.session.scalars(select(Agent.name)))
+        return row
+
+    def add_agent(self, name: str, now: float) -> Agent:
+        """A new agent, with an empty ownership row for every object."""
+        self._unique(Agent, name, "agent")
+        row = Agent(name=name, created=now)
+        self.session.add(row)
+        self.session.flush()
+        ids = list(self.session.scalars(select(Object.id)))
+        if ids:
+            self.session.execute(insert(Ownership), [{"object_id": o, "agent_id": row.id} for o in ids])
+        return row
+
+    def remove(self, row: Base) -> None:
+        """Delete one row (an agent's or object's beliefs, touches and permissions cascade)."""
+        self.session.delete(row)
+        self.session.flush()
+
+    # -- objects --------------------------------------------------------------------------------
+    def objects(self) -> list[Object]:
+        """Every object, by name."""
+        return list(self.session.scalars(select(Object).order_by(Object.name)))
+
+    def object(self, name: str) -> Object:
+        """The object called ``name``."""
+        row = self.session.scalar(select(Object).where(Object.name == name))
+        if row is None:
+            raise UnknownName("object", name, self.session.scalars(select(Object.name)))
+        return row
+
+    def object_by_id(self, object_id: int) -> Object | None:
+        """The object with primary key ``object_id``, if any."""
+        return self.session.get(Object, object_id)
+
+    def add_object(self, name: str, now: float, **percepts: Any) -> Object:
+        """A new object with ``percepts`` (color, x, y, z, extra) and an ownership row per agent."""
+        self._unique(Object, name, "object")
+        row = Object(name=name, created=now, extra=percepts.pop("extra", None) or {}, **percepts)
+        self.session.add(row)
+        self.session.flush()
+        ids = list(self.session.scalars(select(Agent.id)))
+        if ids:
+            self.session.execute(insert(Ownership), [{"object_id": row.id, "agent_id": a} for a in ids])
+        return row
+
+    def categories(self) -> dict[int, set[str]]:
+        """object id -> its categories."""
+        out: dict[int, set[str]] = {}
+        for oid, cat in self.session.execute(select(Category.object_id, Category.category)):
+            out.setdefault(oid, set()).add(cat)
+        return out
+
+    def set_categories(self, object_id: int, categories: Iterable[str]) -> None:
+        """Replace an object's categories."""
+        self.session.execute(delete(Category).where(Category.object_id == object_id))
+        cats = sorted(set(categories))
+        if cats:
+            self.session.execute(insert(Category), [{"object_id": object_id, "category": c} for c in cats])
+
+    def touches(self) -> dict[tuple[int, int], float]:
+        """(object id, agent id) -> absolute time of the agent's last interaction."""
+        rows = self.session.execute(select(Touch.object_id, Touch.agent_id, Touch.time))
+        return {(o, a): t for o, a, t in rows}
+
+    def touch(self, object_id: int, agent_id: int, time: float) -> None:
+        """Record that an agent interacted with an object at ``time`` (absolute store time)."""
+        row = self.session.get(Touch, (object_id, agent_id))
+        if row is None:
+            self.session.add(Touch(object_id=object_id, agent_id=agent_id, time=time))
+        else:
+            row.time = time
+        self.session.flush()
+
+    # -- areas ----------------------------------------------------------------------------------
+    def areas(self) -> list[Area]:
+        """Every area, by name."""
+        return list(self.session.scalars(select(Area).order_by(Area.name)))
+
+    def area(self, name: str) -> Area:
+        """The area called ``name``."""
+        row = self.session.scalar(select(Area).where(Area.name == name))
+        if row is None:
+            raise UnknownName("area", name, self.session.scalars(select(Area.name)))
+        return row
+
+    def add_area(self, name: str, box: Sequence[float]) -> Area:
+        """A new box area."""
+        self._unique(Area, name, "area")
+        x0, y0, x1, y1 = box
+        row = Area(name=name, x0=x0, y0=y0, x1=x1, y1=y1)
+        self.session.add(row)
+        self.session.flush()
+        return row
+
+    # -- ownership beliefs ----------------------------------------------------------------------
+    def ownership(self, object_id: int | None = None, agent_id: int | None = None) -> list[Ownership]:
+        """Ownership rows, optionally for one object and/or one agent."""
+        query = select(Ownership)
+        if object_id is not None:
+            query = query.where(Ownership.object_id == object_id)
+        if agent_id is not None:
+            query = query.where(Ownership.agent_id == agent_id)
+        return list(self.session.scalars(query.order_by(Ownership.object_id, Ownership.agent_id)))
+
+    def write_beliefs(self, rows: Sequence[dict[str, Any]]) -> None:
+        """Bulk UPDATE of ownership rows; each dict has object_id, agent_id and the columns to set."""
+        if rows:
+            self.session.execute(update(Ownership), list(rows))
+            self.session.expire_all()
+
+    def clear_beliefs(self, kinds: Iterable[str]) -> None:
+        """Forget every claim / prior / posterior (``kinds`` among BELIEF_KINDS)."""
+        values: dict[str, Any] = {}
+        for kind in kinds:
+            cols = ("p", "speaker", "trust", "time") if kind == "claim" else ("p", "source", "time")
+            values.update({f"{kind}_{c}": None for c in cols})
+        if values:
+            self.session.execute(update(Ownership).values(**values))
+            self.session.expire_all()
+
+    # -- permissions ----------------------------------------------------------------------------
+    def permissions(self, object_id: int | None = None) -> list[Permission]:
+        """Permissions (all, or one object's), oldest first."""
+        query = select(Permission).order_by(Permission.id)
+        if object_id is not None:
+            query = query.where(Permission.object_id == object_id)
+        return list(self.session.scalars(query))
+
+    def set_permission(
+        self, action: str, object_id: int, value: float, speaker: str | None, now: float
+    ) -> Permission:
+        """Insert or overwrite the permission for (action, object); the last instruction wins."""
+        row = self.session.scalar(
+            select(Permission).where(Permission.action == action, Permission.object_id == object_id)
+        )
+        if row is None:
+            row = Permission(action=action, object_id=object_id, value=value, speaker=speaker, time=now)
+            self.session.add(row)
+        else:
+            row.value, row.speaker, row.time = value, speaker, now
+        self.session.flush()
+        return row
+
+    def permission(self, permission_id: int) -> Permission:
+        """The permission with id ``permission_id``."""
+        row = self.session.get(Permission, permission_id)
+        if row is None:
+            ids = [str(i) for i in self.session.scalars(select(Permission.id))]
+            raise UnknownName("permission", str(permission_id), ids)
+        return row
+
+    # -- rules ----------------------------------------------------------------------------------
+    def rules(self, action: str | None = None) -> list[RuleRow]:
+        """Rules (all, or one action's), by id."""
+        query = select(RuleRow).order_by(RuleRow.id)
+        if action is not None:
+            query = query.where(RuleRow.action == action)
+        return list(self.session.scalars(query))
+
+    def rule(self, rule_id: int) -> RuleRow:
+        """The rule with id ``rule_id``."""
+        row = self.session.get(RuleRow, rule_id)
+        if row is None:
+            ids = [str(i) for i in self.session.scalars(select(RuleRow.id))]
+            raise UnknownName("rule", str(rule_id), ids)
+        return row
+
+    def add_rule(
+        self, action: str, text: str, origin: str, provenance: dict[str, Any], now: float
+    ) -> RuleRow:
+        """Store a rule (its canonical text); an existing equal rule is returned unchanged."""
+        row = self.session.scalar(select(RuleRow).where(RuleRow.action == action, RuleRow.text == text))
+        if row is None:
+            row = RuleRow(action=action, text=text, origin=origin, provenance=provenance, created=now)
+            self.session.add(row)
+            self.session.flush()
+        return row
+
+    def replace_rules(
+        self, action: str, rules: Sequence[tuple[str, str, dict[str, Any]]], now: float
+    ) -> None:
+        """Make ``rules`` (text, origin, provenance) the rule set of ``action``; kept rules keep their ids."""
+        wanted = {t for t, _, _ in rules}
+        for row in self.rules(action):
+            if row.text not in wanted:
+                self.session.delete(row)
+        self.session.flush()
+        for text_, origin, provenance in rules:
+            self.add_rule(action, text_, origin, provenance, now)
+
+    # -- settings, truth, context, events, bulk deletes -----------------------------------------
+    def settings(self) -> dict[str, Any]:
+        """Every stored setting (key -> JSON value)."""
+        return {k: v for k, v in self.session.execute(select(Setting.key, Setting.value))}
+
+    def set_setting(self, key: str, value: Any) -> None:
+        """Store (or with ``value`` None, delete) a setting."""
+        row = self.session.get(Setting, key)
+        if value is None:
+            if row is not None:
+                self.session.delete(row)
+        elif row is None:
+            self.session.add(Setting(key=key, value=value))
+        else:
+            row.value = value
+        self.session.flush()
+
+    def set_truth(self, owners: Sequence[tuple[int, int, float]], norms: Iterable[str]) -> None:
+        """Add ground truth: (object id, agent id, p) triples and true norm texts."""
+        if owners:
+            self.session.execute(
+                insert(TruthOwner), [{"object_id": o, "agent_id": a, "p": p} for o, a, p in owners]
+            )
+        known = set(self.truth_norms())
+        fresh = [n for n in dict.fromkeys(norms) if n not in known]
+        if fresh:
+            self.session.execute(insert(TruthNorm), [{"text": n} for n in fresh])
+
+    def truth_owners(self) -> dict[tuple[int, int], float]:
+        """Ground truth: (object id, agent id) -> true ownership probability."""
+        rows = self.session.execute(select(TruthOwner.object_id, TruthOwner.agent_id, TruthOwner.p))
+        return {(o, a): p for o, a, p in rows}
+
+    def truth_norms(self) -> list[str]:
+        """Ground truth: the true norms, in load order."""
+        return list(self.session.scalars(select(TruthNorm.text).order_by(TruthNorm.id)))
+
+    def context(self) -> Conversation:
+        """The conversation context row (created on first use)."""
+        row = self.session.get(Conversation, 1)
+        if row is None:
+            row = Conversation(id=1)
+            self.session.add(row)
+            self.session.flush()
+        return row
+
+    def log(
+        self, time: float, actor: str | None, interface: str, command: str, payload: dict[str, Any]
+    ) -> Event:
+        """Append an instruction to the event log."""
+        row = Event(time=time, actor=actor, interface=interface, command=command, payload=payload)
+        self.session.add(row)
+        self.session.flush()
+        return row
+
+    def events(self, limit: int | None = None) -> list[Event]:
+        """The last ``limit`` events (all when None), oldest first."""
+        query = select(Event).order_by(Event.id.desc())
+        if limit is not None:
+            query = query.limit(limit)
+        return list(reversed(list(self.session.scalars(query))))
+
+    def clear(self, what: str) -> int:
+        """Delete every permission ("perms"), rule ("rules") or the context ("context"); the count."""
+        table = {"perms": Permission, "rules": RuleRow, "context": Conversation}[what]
+        count = self.session.scalar(select(func.count()).select_from(table)) or 0
+        self.session.execute(delete(table))
+        self.session.expire_all()
+        return int(count)
+
+    def _unique(self, model: type[Agent] | type[Object] | type[Area], name: str, kind: str) -> None:
+        if self.session.scalar(select(model.id).where(model.name == name)) is not None:
+            raise DuplicateName(f"{kind} {name!r} already exists; choose another name")
