@@ -1,0 +1,152 @@
+"""Dialogue: questions, introductions, requests, whole tasks, greetings and thanks.
+
+Documented choices: "Can you throw this away?" asks whether it is permitted (``check``), while
+"Throw this away" / "Could you throw this away?" is a :class:`Request` (a check the application
+may follow by acting). "Clear the table" and "Clean up (the workspace)" throw everything away
+(``trashAll``, as in the original system); "Tidy up" puts everything away (``collectAll``): tidying
+keeps things, it does not discard them.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ownctl.language.context import NotUnderstood
+from ownctl.language.grammar import Grammar, group
+from ownctl.language.instructions import (
+    AskOwner,
+    AskPermitted,
+    AskWhy,
+    Instruction,
+    Introduce,
+    Request,
+    RunTask,
+)
+from ownctl.language.lexicon import NOT_NAMES, actions_regex
+from ownctl.language.resolve import Resolver
+
+GRAMMAR = Grammar()
+
+_TASK_OPENING = r"(?:(?:can|could|would|will) you |go |go and |now |let us |time to |i want you to |" \
+                r"you should |you can )?"
+_ALL = (
+    r"(?:everything|it all|all of it|all(?: of)?(?: the)?"
+    r"(?: (?:objects|blocks|things|stuff|items|cubes))?)"
+)
+_PLACE = r"(?: (?:off )?(?:the|this|your|my) (?:table|workspace|desk|work area|surface|area))?"
+_GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"
+
+
+# -- questions -------------------------------------------------------------------------------
+
+@GRAMMAR.rule(
+    "question",
+    r"whose (?:(?P<noun><NAME>) )?is <OBJ>",
+    r"who (?:owns|is the owner of|has) <OBJ>",
+    r"who does <OBJ> belong to",
+    r"to whom does <OBJ> belong",
+    r"who is <OBJ> owned by",
+    r"(?:is|are) <OBJ> (?:mine|<NAME> 's|owned(?: by <NAME>)?)",
+    r"does <OBJ> belong to <NAME>",
+    r"(?:do|does) <NAME> own <OBJ>",
+)
+def ask_owner(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Whose is this?", "Who owns that?", "Who does this belong to?", "Is this Jake's?"."""
+    noun = group(m, "noun")
+    obj = r.obj(noun) if noun and r.is_object(noun) else r.obj(m["obj"])
+    return (AskOwner(obj),)
+
+
+@GRAMMAR.rule(
+    "question",
+    r"why (?:can|could|may|would|will|did|do|are|is|must|should)(?: not)? (?:you|it)(?: not)? "
+    r"(?:(?:allowed|permitted|forbidden|able) to |be )?<ACT> <OBJ>",
+)
+def ask_why_action(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Why can't you throw this away?": explain that decision."""
+    return (AskWhy(r.action(m["act"]), r.obj(m["obj"])),)
+
+
+@GRAMMAR.rule("question", r"why(?: .*)?")
+def ask_why(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Why not?", "Why?": explain the last refusal."""
+    return (AskWhy(),)
+
+
+@GRAMMAR.rule(
+    "question",
+    r"(?:can|may) you <ACT> <OBJ>",
+    r"are you (?:allowed|permitted|able) to <ACT> <OBJ>",
+    r"(?:are you|is it) (?:not allowed|forbidden) (?:for you )?to <ACT> <OBJ>",
+    r"is it (?:ok|fine|allowed) (?:for you )?to <ACT> <OBJ>",
+    r"(?:can|may) you <DO>",
+)
+def ask_permitted(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Can you throw this away?", "Are you allowed to trash this?", "Can you do that?"."""
+    obj = r.obj(group(m, "obj") or "that")
+    act = group(m, "act")
+    return (AskPermitted(r.action(act) if act else r.current_action("do that"), obj),)
+
+
+# -- introductions ---------------------------------------------------------------------------
+
+@GRAMMAR.rule(
+    "introduction",
+    rf"(?:{_GREETING} )?(?:i am|my name is|call me|i am called|it is|this is) (?P<name><NAME>)"
+    r"(?: here| speaking)?",
+)
+def introduce(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"I'm Jake", "Hi, I'm Jake", "Hello Baxter, I'm Jake", "My name is Jake"."""
+    name = m["name"]
+    if name in NOT_NAMES or r.colour(name) or r.is_object(name):
+        return None
+    return (Introduce(r.new_agent(name)),)
+
+
+# -- tasks and requests ----------------------------------------------------------------------
+
+@GRAMMAR.rule(
+    "task",
+    rf"{_TASK_OPENING}{actions_regex('trash')} {_ALL}",
+    rf"{_TASK_OPENING}(?:clear|clean up|clean|empty|clear off|clear up){_PLACE}",
+    rf"{_TASK_OPENING}clear everything(?: away| off)?",
+)
+def trash_all(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Throw everything away", "Trash everything", "Clear the table", "Clean up the workspace"."""
+    return (RunTask("trashAll"),)
+
+
+@GRAMMAR.rule(
+    "task",
+    rf"{_TASK_OPENING}(?:{actions_regex('collect')}|pick up) {_ALL}",
+    rf"{_TASK_OPENING}tidy(?: up)?{_PLACE}",
+)
+def collect_all(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Collect all the blocks", "Collect everything", "Put everything away", "Tidy up"."""
+    return (RunTask("collectAll"),)
+
+
+@GRAMMAR.rule("request", r"(?:(?:could|would|will) you |go |go and |now )?<ACT> <OBJ>(?: now| for me)?")
+def request(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Throw this away", "Pick that up", "Could you collect the wallet?"."""
+    return (Request(r.action(m["act"]), r.obj(m["obj"])),)
+
+
+@GRAMMAR.rule("question", r"(?:may|can|could|am) i .+")
+def ask_for_self(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"May I throw this away?": the norms are about the robot's own actions, so say so."""
+    raise NotUnderstood(m.string, "my norms are about what I may do; ask \"Can you throw this away?\"")
+
+
+# -- small talk ------------------------------------------------------------------------------
+
+@GRAMMAR.rule("greeting", _GREETING)
+def greeting(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Hello": nothing to do but answer."""
+    return ()
+
+
+@GRAMMAR.rule("thanks", r"(?:thanks|thank you)(?: very much| so much| a lot)?(?: .*)?")
+def thanks(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"Thank you": nothing to do but answer."""
+    return ()

@@ -1,0 +1,113 @@
+"""The words the grammar knows: action phrases, pronouns, heads of noun phrases, hedges, fillers.
+
+Everything here is lower case and already normalised (see :mod:`ownctl.language.normalize`):
+contractions are expanded ("don't" -> "do not"), possessives are split ("casey's" -> "casey 's")
+and phrasal verbs are joined ("throw it away" -> "throw away it").
+
+Action phrases (documented choice): *touching* an object means picking it up, since the robot
+cannot touch without grasping; *bringing* or *putting away* means collecting it (taking it home).
+"""
+
+from __future__ import annotations
+
+import re
+
+#: Names the robot answers to; stripped when used as a vocative ("No Baxter, ...", "Robot, ...").
+ROBOT_NAMES = ("baxter", "robot")
+ROBOT = "Baxter"
+
+#: Action phrase -> action (DESIGN section 2). Longest phrases are tried first.
+ACTION_PHRASES: dict[str, str] = {
+    "throw away": "trash", "throw out": "trash", "toss out": "trash", "toss away": "trash",
+    "toss": "trash", "chuck out": "trash", "chuck away": "trash", "chuck": "trash",
+    "trash": "trash", "bin": "trash", "discard": "trash", "dispose of": "trash",
+    "get rid of": "trash", "junk": "trash", "throw": "trash",
+    "pick up": "pickUp", "lift": "pickUp", "grab": "pickUp", "take": "pickUp",
+    "touch": "pickUp", "hold": "pickUp", "handle": "pickUp", "get": "pickUp",
+    "collect": "collect", "bring home": "collect", "bring back": "collect", "bring": "collect",
+    "put away": "collect", "fetch": "collect", "gather": "collect",
+}
+
+#: Verbs whose particle may follow the object ("throw it away"); normalisation joins them.
+PARTICLE_VERBS = ("throw", "toss", "chuck", "pick", "put", "bring", "clean", "tidy")
+PARTICLES = ("away", "out", "up", "home", "back")
+
+#: Deictic phrases: the object the conversation is about (``Context.about``).
+DEICTIC = ("this", "that", "it", "this one", "that one")
+#: Nouns that describe rather than name an object: "this thing", "that block".
+GENERIC_NOUNS = frozenset({"one", "thing", "object", "item", "block", "cube", "stuff"})
+#: Heads of a class of objects in a norm: "red things", "anything of Jake's".
+CLASS_HEADS = (
+    "anything", "everything", "something", "things", "thing", "stuff", "objects", "items",
+    "blocks", "cubes", "belongings", "property", "possessions", "ones", "it", "them",
+)
+
+#: Words that are never object names in an object phrase (so "that is mine" is no object "is").
+NOT_NOUNS = frozenset({
+    "is", "are", "it", "this", "that", "these", "those", "them", "they", "if", "and", "or", "not",
+    "to", "of", "in", "on", "with", "for", "nothing", "all", "any", "every", "mine", "yours",
+    "away", "up", "out", "home", "back", "everyone", "someone", "nobody", "anyone", "other",
+    "others", "my", "your", "the", "a", "an", "because", "since", "so", "alone", "now", "do",
+    "when", "whenever", "which", "who", "whose", "what", "why", "where", *CLASS_HEADS,
+}) - {"thing"}
+
+#: Words that cannot be a name in "I'm NAME" ("I'm sorry", "I'm done").
+NOT_NAMES = frozenset({
+    "sorry", "done", "back", "here", "ok", "fine", "good", "ready", "not", "sure", "going",
+    "leaving", "finished", "busy", "afraid", "glad", "happy", "the", "a", "an", "mine", "yours",
+    "it", "this", "that", "allowed", "robot", "baxter", "you", "me", "red", "someone", "nobody",
+    "anyone", "everyone",
+})
+
+#: Default colour words (``Context.colors``); "none" is a colour value but never an adjective.
+COLORS = frozenset({
+    "red", "green", "blue", "yellow", "orange", "purple", "pink", "black", "white", "brown",
+    "grey", "gray", "cyan", "magenta", "none",
+})
+
+#: Hedges and the confidence they give a claim ("that's probably mine" -> p = 0.8).
+HEDGES: dict[str, float] = {
+    "probably": 0.8, "likely": 0.8, "i think": 0.8, "i believe": 0.8, "i guess": 0.6,
+    "maybe": 0.6, "perhaps": 0.6, "definitely": 1.0, "certainly": 1.0, "really": 1.0,
+    "actually": 1.0, "surely": 1.0, "i am sure": 1.0, "i am pretty sure": 0.9,
+}
+
+#: Words meaning the speaker, any agent, or no agent, in owner positions.
+SPEAKER_WORDS = frozenset({"me", "mine", "my", "i", "myself"})
+ANYONE_WORDS = frozenset({
+    "someone", "anyone", "everyone", "someone else", "anyone else", "other people", "others",
+    "another person", "other agents", "somebody else", "people",
+})
+NOBODY_WORDS = frozenset({"nobody"})
+
+#: Words dropped wherever they occur.
+FILLERS = frozenset({"please", "pls", "kindly", "um", "uh", "erm", "hmm", "oh", "well"})
+
+#: What the parser says it understands when it does not (NotUnderstood's message).
+EXAMPLES = (
+    "No, that's mine!",
+    "Don't throw this away, it's Jake's",
+    "Never trash red things",
+    "Whose is this?",
+)
+
+
+def alternation(words: tuple[str, ...] | frozenset[str] | list[str]) -> str:
+    """A non-capturing regex alternation of phrases, longest first, each ending at a word boundary."""
+    ordered = sorted(set(words), key=lambda w: (-len(w), w))
+    return "(?:" + "|".join(re.escape(w) for w in ordered) + r")(?![\w-])"
+
+
+def actions_regex(action: str | None = None) -> str:
+    """Regex for the phrases of one action (or of every action)."""
+    return alternation([p for p, a in ACTION_PHRASES.items() if action is None or a == action])
+
+
+def action_of(phrase: str) -> str:
+    """The action an action phrase names (``"throw away"`` -> ``trash``)."""
+    return ACTION_PHRASES[" ".join(phrase.split())]
+
+
+def hedge_of(phrase: str | None) -> float:
+    """The confidence a hedge gives (1.0 for none)."""
+    return HEDGES.get(" ".join(phrase.split()), 1.0) if phrase else 1.0

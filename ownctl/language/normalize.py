@@ -1,0 +1,96 @@
+"""Utterance normalisation: one lower-case word string for the many ways of typing a sentence.
+
+The grammar sees only this form, so it never deals with case, punctuation, curly apostrophes,
+contractions, vocatives ("No Baxter, ...") or "please". Steps, in order:
+
+1. straight apostrophes, lower case;
+2. a vocative at the start ("Baxter, ...", "No Baxter ..."), after a comma in the middle or after
+   punctuation at the end is dropped (a name inside a sentence, "that belongs to baxter", stays);
+3. punctuation becomes spaces; apostrophes inside words and hyphens inside names stay;
+4. contractions are expanded and spelling variants unified ("that's" -> "that is", "don't" ->
+   "do not", "no one" -> "nobody", "okay" -> "ok"); a remaining "'s" is a possessive, split off
+   as its own word ("casey's" -> "casey 's");
+5. fillers ("please", "um", "just") go;
+6. a phrasal verb's particle is moved before its object ("throw this wallet away" -> "throw away
+   this wallet"), so each action phrase is one contiguous string.
+"""
+
+from __future__ import annotations
+
+import re
+
+from ownctl.language.lexicon import FILLERS, PARTICLE_VERBS, PARTICLES, ROBOT_NAMES, alternation
+
+_QUOTES = str.maketrans({"\u2019": "'", "\u2018": "'", "`": "'", "\u00b4": "'", "\u02bc": "'"})
+_VOC = alternation(ROBOT_NAMES)
+_INTERJECTIONS = r"(hey|hi|hello|ok|okay|oh|no|nope|so|well|please|stop|wait|yes|thanks|thank you)"
+_PUNCT = r"[\s,.!?;:\u2013\u2014-]"
+_LEAD_VOC = re.compile(rf"^[\s\W]*(?:{_INTERJECTIONS}{_PUNCT}+)?{_VOC}(?={_PUNCT}|$)")
+_MID_VOC = re.compile(rf"[,\u2013\u2014-]\s*{_VOC}\s*[,\u2013\u2014-]")
+_TAIL_VOC = re.compile(rf"[,.!?;:\u2013\u2014-]\s*{_VOC}{_PUNCT}*$")
+
+_REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
+    (re.compile(p), r)
+    for p, r in (
+        (r"\bno[ -]?one\b|\bnobody\b", "nobody"),
+        (r"\bcan't\b|\bcannot\b|\bcant\b", "can not"),
+        (r"\bwon't\b", "will not"),
+        (r"\bain't\b", "is not"),
+        (r"\bshan't\b", "shall not"),
+        (r"\b(do|does|did|is|are|was|were|should|must|could|would|have|has)n'?t\b", r"\1 not"),
+        (r"(\w)n't\b", r"\1 not"),
+        (r"\bi'm\b|\bim\b", "i am"),
+        (r"\byou're\b|\byoure\b", "you are"),
+        (r"\blet's\b", "let us"),
+        (r"\b(that|this|it|what|who|where|there|here|he|she|one)'s\b", r"\1 is"),
+        (r"\b(that|what|it)s\b", r"\1 is"),
+        (r"'re\b", " are"),
+        (r"'ll\b", " will"),
+        (r"'ve\b", " have"),
+        (r"\bi'd\b", "i would"),
+        (r"'s\b", " 's"),
+        (r"\b(anybody)\b", "anyone"),
+        (r"\bsomebody\b", "someone"),
+        (r"\beverybody\b", "everyone"),
+        (r"\bokay\b|\balright\b|\ball right\b", "ok"),
+        (r"\bcolou?red\b", "colored"),
+        (r"\bcolour\b", "color"),
+        (r"\bgonna\b", "going to"),
+        (r"\bwanna\b", "want to"),
+        (r"\bnever ever\b|\bdo not ever\b|\bdo not you ever\b", "never"),
+    )
+)
+
+_STOP = alternation((*PARTICLES, "and", "if", "then", "when", "because"))
+_PARTICLE = re.compile(
+    rf"\b({'|'.join(PARTICLE_VERBS)}) ((?:(?!{_STOP})[\w'-]+ ){{1,5}}?)({'|'.join(PARTICLES)})\b"
+)
+
+
+def _drop_vocatives(text: str) -> str:
+    """Remove the robot's name where it is only addressed, keeping a leading interjection."""
+    text = _LEAD_VOC.sub(lambda m: f"{m.group(1) or ''} ", text, count=1)
+    text = _MID_VOC.sub(",", text)
+    return _TAIL_VOC.sub(" ", text)
+
+
+def _strip_punctuation(text: str) -> str:
+    """Punctuation to spaces; keep apostrophes and hyphens inside words; split plural possessives."""
+    text = re.sub(r"[^\w\s'-]|_(?![\w-])", " ", text)
+    text = re.sub(r"(\w)s'(?=\s|$)", r"\1s 's", text)
+    return re.sub(r"(?<![\w])(?:-+|'(?!s\b))|['-]+(?![\w])", " ", text)
+
+
+def _move_particles(text: str) -> str:
+    """``throw this away`` -> ``throw away this``: the particle joins its verb."""
+    return _PARTICLE.sub(lambda m: f"{m.group(1)} {m.group(3)} {m.group(2)}", text)
+
+
+def normalize(utterance: str) -> str:
+    """The canonical word string of an utterance (lower case, single spaces, no punctuation)."""
+    text = _drop_vocatives(utterance.translate(_QUOTES).lower())
+    text = _strip_punctuation(text)
+    for pattern, repl in _REWRITES:
+        text = pattern.sub(repl, text)
+    text = " ".join(w for w in text.split() if w not in FILLERS)
+    return " ".join(_move_particles(text).split())
