@@ -1,0 +1,28 @@
+"""Why a simulated step failed. Each is a :class:`ScenarioFailed` (exit code 4 in the CLI)."""
+
+from __future__ import annotations
+
+from ownctl.errors import ScenarioFailed
+
+
+class SimStepFailed(ScenarioFailed):
+    """A scripted skill could not be completed; the world is left as it was at the failure."""
+
+
+class PhysicsUnstable(SimStepFailed):
+    """MuJoCo flagged bad accelerations (``mjWARN_BADQACC``) or the state became non-finite.
+
+    The world restores the state from before the failed action instead of MuJoCo's silent reset.
+    """
+
+
+class Unreachable(SimStepFailed):
+    """The inverse kinematics found no joint solution for a required hand pose."""
+
+
+class GraspFailed(SimStepFailed):
+    """No collision-free grasp exists, or the block was not held after the lift or carry."""
+
+
+class NoRoom(SimStepFailed):
+    """The home area or the bin has no free spot left for another block."""

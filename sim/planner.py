@@ -1,0 +1,174 @@
+"""Where to grasp, where to put down, where to drop: collision-free choices in plan view.
+
+Every choice is checked against the other blocks and the bin walls as :class:`~sim.footprint.Rect`
+obstacles with heights: the fingers sweep down to their tips, the palm down to its underside, and
+nothing they sweep may touch a block other than the one handled (or the tower it is put on).
+Choices are deterministic: ties go to the first candidate in a fixed order.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import NDArray
+
+from sim import baxter
+from sim import scene_config as cfg
+from sim.footprint import Rect, face_yaw, finger_rects, overlap, palm_rect, square
+
+Vec = NDArray[np.float64]
+
+H = cfg.BLOCK_HALF
+PICK_OPENING = H + 0.004  # finger inner faces this far from the block centre when going down to grasp
+PLACE_OPENING = H + 0.003  # ... and when letting go of a block on a tower
+DROP_OPENING = H + 0.006
+MARGIN = 0.0015  # clearance kept between a swept finger and any obstacle
+PALM_DEPTH = baxter.GRIP_SITE_Z - 2 * baxter.PALM_HALF[2]  # palm underside above the grip site
+ALIGNED = 0.004  # a block within this distance of a cell's centre belongs to that cell's tower
+MAX_TOWER = 0.06  # a home tower may not grow above this height over the table
+
+
+@dataclass(frozen=True)
+class BlockState:
+    """A block as the planner sees it: index, centre (3,) and yaw about z."""
+
+    index: int
+    center: tuple[float, float, float]
+    yaw: float
+
+    def rect(self, pad: float = 0.0) -> Rect:
+        """Footprint with the block's height span, grown by ``pad`` on every side."""
+        z = self.center[2]
+        return square(np.asarray(self.center[:2]), self.yaw, H + pad, z - H - pad, z + H + pad)
+
+
+def wall_rects(bin_box: tuple[float, float, float, float]) -> list[Rect]:
+    """The four bin walls of the world box ``bin_box`` as obstacles."""
+    x0, y0, x1, y1 = bin_box
+    w, top = cfg.BIN_WALL / 2, cfg.TABLE_TOP + cfg.BIN_HEIGHT
+    cx, cy, hx, hy = (x0 + x1) / 2, (y0 + y1) / 2, (x1 - x0) / 2, (y1 - y0) / 2
+    return [
+        Rect((x0 + w, cy), 0.0, (w, hy), cfg.TABLE_TOP, top),
+        Rect((x1 - w, cy), 0.0, (w, hy), cfg.TABLE_TOP, top),
+        Rect((cx, y0 + w), 0.0, (hx, w), cfg.TABLE_TOP, top),
+        Rect((cx, y1 - w), 0.0, (hx, w), cfg.TABLE_TOP, top),
+    ]
+
+
+def hand_clear(
+    center: Vec, closing_yaw: float, opening: float, grip_z: float, obstacles: Sequence[Rect]
+) -> bool:
+    """True if fingers (at ``opening``) and palm going down to grip-site height ``grip_z`` touch no obstacle.
+
+    The gap between the fingers must be free above the handled block too (nothing stacked on it).
+    """
+    tips = grip_z - baxter.TIP_BELOW_SITE
+    parts = finger_rects(center, closing_yaw, opening, tips, np.inf)
+    parts.append(palm_rect(center, closing_yaw, grip_z + PALM_DEPTH))
+    parts.append(
+        Rect(
+            (float(center[0]), float(center[1])),
+            closing_yaw,
+            (opening, baxter.FINGER_WIDTH),
+            grip_z + H + 0.002,
+        )
+    )
+    return not any(overlap(p, o, MARGIN) for p in parts for o in obstacles)
+
+
+def closing_options(face: float, current: float) -> list[float]:
+    """The two closing directions square to a block face, nearest to ``current`` first.
+
+    The gripper is symmetric under a half turn, so each option is chosen within pi/2 of ``current``
+    (the arm's comfortable yaw, :data:`sim.ik.YAW_CENTER`).
+    """
+    first = face_yaw(face, current)
+    second = first + np.pi / 2
+    second = second - np.pi if second - current > np.pi / 2 else second
+    return sorted([first, second], key=lambda y: abs(y - current))
+
+
+def grasp_yaw(
+    target: BlockState, others: Sequence[BlockState], walls: Sequence[Rect], current: float
+) -> float | None:
+    """A closing yaw for grasping ``target`` with free fingers and palm, or None if both are blocked."""
+    obstacles = [b.rect() for b in others] + list(walls)
+    center = np.asarray(target.center[:2])
+    for yaw in closing_options(target.yaw, current):
+        if hand_clear(center, yaw, PICK_OPENING, target.center[2], obstacles):
+            return float(yaw)
+    return None
+
+
+@dataclass(frozen=True)
+class PutDown:
+    """Where a held block goes: block centre (3,) and the hand's closing yaw."""
+
+    center: tuple[float, float, float]
+    closing_yaw: float
+
+
+def home_put_down(
+    cells: Sequence[tuple[float, float]],
+    blocks: Sequence[BlockState],
+    block_yaw_in_hand: float,
+    current: float,
+) -> PutDown | None:
+    """The home cell with the lowest clear tower (ties: first cell); None if every cell is blocked or full.
+
+    ``block_yaw_in_hand`` is the held block's yaw relative to the hand; the block lands axis-aligned.
+    """
+    best: tuple[float, int, PutDown] | None = None
+    for k, cell in enumerate(cells):
+        c = np.asarray(cell)
+        members = [b for b in blocks if np.hypot(*(np.asarray(b.center[:2]) - c)) < ALIGNED]
+        others = [b for b in blocks if b not in members]
+        support = max((b.center[2] + H for b in members), default=cfg.TABLE_TOP)
+        if support + 2 * H > cfg.TABLE_TOP + MAX_TOWER:
+            continue
+        z = support + H
+        footprint = square(c, 0.0, H, z - H, z + H)
+        obstacles = [b.rect() for b in others]
+        if any(overlap(footprint, o, MARGIN) for o in obstacles):
+            continue
+        for yaw in closing_options(-block_yaw_in_hand, current):
+            if hand_clear(c, yaw, PLACE_OPENING, z, obstacles):
+                choice = PutDown((float(c[0]), float(c[1]), float(z)), float(yaw))
+                if best is None or (support, k) < best[:2]:
+                    best = (support, k, choice)
+                break
+    return None if best is None else best[2]
+
+
+def bin_cells(bin_box: tuple[float, float, float, float], pitch: float = 0.02) -> list[tuple[float, float]]:
+    """Drop points in the bin: a grid ``pitch`` apart keeping open fingers off the walls, centre first."""
+    x0, y0, x1, y1 = bin_box
+    reach = DROP_OPENING + baxter.FINGER_THICK + MARGIN + 0.002
+    half = (np.array([x1 - x0, y1 - y0]) / 2) - cfg.BIN_WALL - reach
+    centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
+    counts = [max(1, int(2 * half[k] // pitch) + 1) for k in (0, 1)]
+    pts = [
+        centre + np.array([dx, dy])
+        for dx in (np.arange(counts[0]) - (counts[0] - 1) / 2) * pitch
+        for dy in (np.arange(counts[1]) - (counts[1] - 1) / 2) * pitch
+    ]
+    pts.sort(key=lambda p: (round(float(np.linalg.norm(p - centre)), 6), float(p[0]), float(p[1])))
+    return [(float(p[0]), float(p[1])) for p in pts]
+
+
+def drop_point(
+    cells: Sequence[tuple[float, float]], blocks: Sequence[BlockState]
+) -> tuple[float, float, float]:
+    """The bin cell with the lowest pile (ties: first cell) and the pile's top height there."""
+    floor = cfg.TABLE_TOP + cfg.BIN_FLOOR
+    best: tuple[float, int] | None = None
+    for k, cell in enumerate(cells):
+        near = [b.center[2] + H for b in blocks if np.hypot(*(np.asarray(b.center[:2]) - cell)) < 2.5 * H]
+        top = max(near, default=floor)
+        if best is None or (top, k) < best:
+            best = (top, k)
+    assert best is not None
+    x, y = cells[best[1]]
+    return (x, y, best[0])

@@ -1,0 +1,239 @@
+"""PhysicsWorld: the simulated table the rest of ownctl drives, one object-level action at a time.
+
+    world = PhysicsWorld([SimBlock("block1", "red", (0.3, 0.2, 0.0))], [SimArea("home", (-.1, -.1, .1, .1))])
+    outcome = world.trash("block1")          # StepOutcome(ok=True, action="trash", ...)
+    world.position("block1")                 # workspace coordinates, inside the trash area
+
+Inputs and outputs are in workspace coordinates (:mod:`sim.workspace`). Each action either succeeds,
+or fails with a reason in its :class:`StepOutcome`; physics instability restores the state from
+before the action (never MuJoCo's silent reset) and fails the step.
+"""
+
+from __future__ import annotations
+
+import copy
+from collections.abc import Sequence
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from sim import baxter
+from sim.errors import PhysicsUnstable, SimStepFailed, Unreachable
+from sim.layout import home_slots, place_blocks
+from sim.planner import PICK_OPENING
+from sim.render import Recorder
+from sim.robot import Robot
+from sim.scene import BlockSpec, block_body, scene_xml
+from sim.skills import HOVER, Held, Skills
+from sim.workspace import SimArea, SimBlock, WorkspaceMap, with_default_areas
+
+__all__ = ["PhysicsWorld", "SimArea", "SimBlock", "StepOutcome", "WorkspaceMap"]
+
+ARMS = ("auto", "left", "right")
+GRASPS = ("weld", "friction")
+
+
+@dataclass(frozen=True)
+class StepOutcome:
+    """Result of one action on one object; ``error`` says why when ``ok`` is False."""
+
+    ok: bool
+    action: str
+    object: str
+    error: str | None
+    sim_seconds: float
+
+
+def _quiet_mujoco_log() -> None:
+    """Stop MuJoCo from writing MUJOCO_LOG.TXT into the working directory or printing warnings."""
+    import mujoco
+
+    config = mujoco.MjLogConfig.get()
+    config.logto_file = False
+    config.logto_console = False
+    config.set()
+
+
+class PhysicsWorld:
+    """A Baxter, a table, one block per :class:`SimBlock`, a bin on the trash area and a home mat.
+
+    ``arm`` is "auto" (the arm on the object's side), "left" or "right"; ``grasp`` is "weld" (fingers
+    close, then a weld holds the block while both fingers touch it) or "friction". ``render`` is None
+    (headless, no frames), a ``.png`` path (nothing captured while acting) or a ``.mp4``/``.gif`` path
+    (frames captured while acting; write them with :meth:`finish_video`).
+    """
+
+    def __init__(
+        self,
+        blocks: Sequence[SimBlock],
+        areas: Sequence[SimArea] = (),
+        *,
+        seed: int = 0,
+        arm: str = "auto",
+        grasp: str = "weld",
+        render: str | None = None,
+        workspace_map: WorkspaceMap | None = None,
+    ) -> None:
+        import mujoco
+
+        if arm not in ARMS:
+            raise ValueError(f"unknown arm {arm!r}; known arms: {', '.join(ARMS)}")
+        if grasp not in GRASPS:
+            raise ValueError(f"unknown grasp {grasp!r}; known grasps: {', '.join(GRASPS)}")
+        names = [b.name for b in blocks]
+        if len(set(names)) != len(names):
+            raise ValueError("block names must be unique")
+        _quiet_mujoco_log()
+        self.map = workspace_map or WorkspaceMap()
+        self.areas = with_default_areas(list(areas))
+        self.arm, self.seed = arm, seed
+        self.names = names
+        self.index = {name: i for i, name in enumerate(names)}
+        placements = place_blocks(blocks, self.areas, self.map, np.random.default_rng(seed))
+        self.nudged = {p.name: p.nudged for p in placements}
+        self.trash_box = self.map.box_to_world(self.areas["trash"].box)
+        self.home_box = self.map.box_to_world(self.areas["home"].box)
+        specs = [
+            BlockSpec(block_body(i), b.color, p.position)
+            for i, (b, p) in enumerate(zip(blocks, placements, strict=True))
+        ]
+        self.xml = scene_xml(specs, self.trash_box, self.home_box)
+        self.model = mujoco.MjModel.from_xml_string(self.xml)
+        self.data = mujoco.MjData(self.model)
+        self.recorder = Recorder.for_target(self.model, render)
+        self.robot = Robot(self.model, self.data, self.recorder.hook if self.recorder.video else None)
+        self.robot.park_instantly(PICK_OPENING)
+        self.skills = Skills(self.robot, len(names), self.trash_box, home_slots(self.home_box), grasp)
+        self._bodies = [self.model.body(block_body(i)).id for i in range(len(names))]
+
+    # ----------------------------------------------------------------- queries
+    @property
+    def sim_time(self) -> float:
+        """Seconds of simulated time so far."""
+        return float(self.data.time)
+
+    def _check_name(self, name: str) -> int:
+        if name not in self.index:
+            known = ", ".join(sorted(self.index)) or "(none)"
+            raise KeyError(f"unknown object {name!r}; known objects: {known}")
+        return self.index[name]
+
+    def position(self, name: str) -> tuple[float, float, float]:
+        """Current workspace coordinates of block ``name`` (inverse map of its centre)."""
+        p = self.map.to_workspace(self.data.xpos[self._bodies[self._check_name(name)]])
+        return (float(p[0]), float(p[1]), float(p[2]))
+
+    def positions(self) -> dict[str, tuple[float, float, float]]:
+        """Workspace coordinates of every block, by name."""
+        return {name: self.position(name) for name in self.names}
+
+    def in_area(self, name: str, area: str) -> bool:
+        """True if block ``name``'s (x, y) lies inside area ``area`` (workspace box)."""
+        return self.areas[area].contains(self.position(name))
+
+    # ----------------------------------------------------------------- actions
+    def trash(self, name: str) -> StepOutcome:
+        """Find block ``name``, pick it up, carry it to the bin and drop it in."""
+        return self._act("trash", name, self._trash)
+
+    def collect(self, name: str) -> StepOutcome:
+        """Find block ``name``, pick it up, go home and put it down inside the home area."""
+        return self._act("collect", name, self._collect)
+
+    def go_home(self) -> None:
+        """Move both hands up and back to their park poses beside the table."""
+        for side in baxter.SIDES:
+            self.skills.park(side)
+
+    def _side(self, block: int) -> str:
+        return self.skills.nearer_arm(block) if self.arm == "auto" else self.arm
+
+    def _trash(self, block: int) -> str:
+        side = self._side(block)
+        yaw = self.skills.plan_grasp(side, block)
+        spot = self.skills.plan_drop(block)
+        self._require_reach(side, block, yaw, [(np.array([spot[0], spot[1], HOVER]), yaw)])
+        held = self.skills.pick(side, block, yaw)
+        self.skills.drop_in_bin(side, held, spot)
+        self.skills.park(side)
+        return "trash"
+
+    def _collect(self, block: int) -> str:
+        side = self._side(block)
+        yaw = self.skills.plan_grasp(side, block)
+        state = self.skills.state(block)
+        center, put_yaw = self.skills.plan_home(side, block, state.yaw - yaw)
+        self._require_reach(
+            side,
+            block,
+            yaw,
+            [(np.array([center[0], center[1], HOVER]), put_yaw), (np.asarray(center), put_yaw)],
+        )
+        held: Held = self.skills.pick(side, block, yaw)
+        center, put_yaw = self.skills.plan_home(side, block, held.yaw)
+        self.skills.put_home(side, held, center, put_yaw)
+        self.skills.park(side)
+        return "home"
+
+    def _require_reach(self, side: str, block: int, yaw: float, more: list[tuple[np.ndarray, float]]) -> None:
+        x, y, z = self.skills.state(block).center
+        poses = [(np.array([x, y, HOVER]), yaw), (np.array([x, y, z]), yaw), *more]
+        if not self.skills.reachable(side, poses):
+            raise Unreachable(f"the {side} arm cannot reach every pose of this action")
+
+    def _act(self, action: str, name: str, body: object) -> StepOutcome:
+        """Run one action; turn failures into a failed outcome, restoring the state on instability."""
+        block = self._check_name(name)
+        start = self.sim_time
+        snapshot = (
+            copy.copy(self.data),
+            copy.deepcopy(self.robot.qcmd),
+            copy.deepcopy(self.robot.target),
+            dict(self.robot.yaw),
+            dict(self.robot.held),
+        )
+        try:
+            area = body(block)  # type: ignore[operator]
+            self.robot.wait(0.3)
+        except PhysicsUnstable as exc:
+            elapsed = self.sim_time - start
+            self._restore(snapshot)
+            return StepOutcome(False, action, name, str(exc), elapsed)
+        except SimStepFailed as exc:
+            self._recover()
+            return StepOutcome(False, action, name, str(exc), self.sim_time - start)
+        if not self.in_area(name, area):
+            return StepOutcome(
+                False, action, name, f"{name} ended outside the {area} area", self.sim_time - start
+            )
+        return StepOutcome(True, action, name, None, self.sim_time - start)
+
+    def _restore(self, snapshot: tuple) -> None:  # type: ignore[type-arg]
+        import mujoco
+
+        data, qcmd, target, yaw, held = snapshot
+        mujoco.mj_copyData(self.data, self.model, data)
+        self.robot.qcmd, self.robot.target, self.robot.yaw, self.robot.held = qcmd, target, yaw, held
+        self.robot._bad = self.data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number
+        mujoco.mj_forward(self.model, self.data)
+
+    def _recover(self) -> None:
+        """After a failed skill: let go of anything held and park both arms (best effort)."""
+        for side in baxter.SIDES:
+            self.robot.detach(side)
+        try:
+            for side in baxter.SIDES:
+                self.robot.set_gripper(side, PICK_OPENING, seconds=0.0)
+                self.skills.park(side)
+        except SimStepFailed:
+            pass
+
+    # ----------------------------------------------------------------- rendering
+    def render_png(self, path: str | Path, camera: str = "front") -> Path:
+        """Render the current scene to a PNG at ``path`` (needs an OpenGL backend, e.g. MUJOCO_GL=osmesa)."""
+        return self.recorder.png(self.data, Path(path), camera)
+
+    def finish_video(self, path: str | Path | None = None) -> Path:
+        """Write the frames captured so far to ``path`` (default: the ``render`` target) as MP4 or GIF."""
+        return self.recorder.write_video(Path(path) if path is not None else None)

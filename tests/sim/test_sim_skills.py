@@ -1,0 +1,119 @@
+"""Scripted trash and collect: delivery into the areas, untouched neighbours, failures reported."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from sim.world import PhysicsWorld, SimArea, SimBlock, StepOutcome
+
+AREAS = [SimArea("trash", (-0.3, 0.6, 0.2, 1.1)), SimArea("home", (-0.1, -0.1, 0.1, 0.1))]
+
+
+def _world(**kwargs: object) -> PhysicsWorld:
+    blocks = [
+        SimBlock("red1", "red", (0.5, -0.6, 0.0)),
+        SimBlock("green1", "green", (0.35, 0.45, 0.0)),
+        SimBlock("blue1", "blue", (-0.7, -0.3, 0.0)),
+        SimBlock("near1", None, (0.62, -0.48, 0.0)),  # a close neighbour of red1
+        SimBlock("home1", None, (0.02, 0.03, 0.0)),
+    ]
+    return PhysicsWorld(blocks, AREAS, **kwargs)  # type: ignore[arg-type]
+
+
+def _moved(
+    before: dict[str, tuple[float, float, float]],
+    after: dict[str, tuple[float, float, float]],
+    scale: float,
+    skip: str,
+) -> float:
+    """Largest world displacement (m) of any block other than ``skip``."""
+    return max(np.linalg.norm(np.subtract(after[n], before[n])) * scale for n in before if n != skip)
+
+
+def test_trash_puts_the_block_in_the_bin_and_leaves_the_others() -> None:
+    world = _world()
+    before = world.positions()
+    outcome = world.trash("red1")
+    assert outcome == StepOutcome(True, "trash", "red1", None, outcome.sim_seconds)
+    assert outcome.sim_seconds > 1.0 and world.sim_time == pytest.approx(outcome.sim_seconds)
+    assert AREAS[0].contains(world.position("red1"))
+    assert _moved(before, world.positions(), world.map.scale, "red1") < 0.01
+
+
+def test_collect_puts_the_block_down_inside_home() -> None:
+    world = _world()
+    before = world.positions()
+    outcome = world.collect("blue1")
+    assert outcome.ok, outcome.error
+    assert AREAS[1].contains(world.position("blue1"))
+    assert world.position("blue1")[2] < 0.2  # put down on the home grid, not left hanging
+    assert _moved(before, world.positions(), world.map.scale, "blue1") < 0.01
+
+
+@pytest.mark.slow
+def test_forced_arm_and_friction_grasp_also_deliver() -> None:
+    world = _world(arm="right", grasp="friction")
+    assert world.trash("green1").ok
+    assert world.collect("red1").ok
+    assert AREAS[0].contains(world.position("green1")) and AREAS[1].contains(world.position("red1"))
+    assert world.robot.held == {"left": None, "right": None}
+
+
+def test_same_seed_gives_the_same_final_positions() -> None:
+    finals = []
+    for _ in range(2):
+        world = _world(seed=7)
+        world.trash("green1")
+        world.collect("blue1")
+        finals.append(world.positions())
+    assert finals[0] == finals[1]
+
+
+def test_physics_instability_fails_the_step_and_restores_the_state() -> None:
+    world = _world()
+    before, t0 = world.positions(), world.sim_time
+    steps = {"n": 0}
+
+    def blow_up(data: object) -> None:
+        steps["n"] += 1
+        if steps["n"] == 200:
+            data.qvel[:] = 1e20  # type: ignore[attr-defined]
+
+    world.robot.frame_hook = blow_up
+    outcome = world.trash("red1")
+    assert not outcome.ok and "unstable" in (outcome.error or "")
+    assert world.positions() == before and world.sim_time == t0
+    world.robot.frame_hook = None
+    assert world.trash("red1").ok  # the world is still usable
+
+
+def test_unknown_object_is_an_error_naming_the_known_ones() -> None:
+    with pytest.raises(KeyError, match="known objects: blue1, green1, home1, near1, red1"):
+        _world().trash("thrash")
+
+
+def test_out_of_reach_forced_arm_fails_without_moving_anything() -> None:
+    world = PhysicsWorld([SimBlock("far", None, (1.05, 1.05, 0.0))], AREAS, arm="right")
+    before = world.positions()
+    outcome = world.trash("far")
+    assert not outcome.ok and "reach" in (outcome.error or "")
+    assert _moved(before, world.positions(), world.map.scale, "") < 0.001
+
+
+def test_a_block_with_something_on_top_is_not_grasped() -> None:
+    crowded = [SimBlock(f"h{i}", None, (0.01 * i, 0.0, 0.0)) for i in range(5)]  # 5 blocks, 4 home cells
+    world = PhysicsWorld(crowded, AREAS)
+    heights = {n: p[2] for n, p in world.positions().items()}
+    bottom = min(
+        n
+        for n in heights
+        if heights[n] < 0.01
+        and any(
+            abs(np.subtract(world.position(m), world.position(n))[:2]).max() < 1e-6 for m in heights if m != n
+        )
+    )
+    before = world.positions()
+    outcome = world.trash(bottom)
+    assert not outcome.ok and "grasp" in (outcome.error or "")
+    assert _moved(before, world.positions(), world.map.scale, "") < 0.001
