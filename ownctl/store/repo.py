@@ -158,7 +158,7 @@ class Tx:
         """Bulk UPDATE of ownership rows; each dict has object_id, agent_id and the columns to set."""
         if rows:
             self.session.execute(update(Ownership), list(rows))
-            self.session.expire_all()
+            self._expire(Ownership)
 
     def clear_beliefs(self, kinds: Iterable[str]) -> None:
         """Forget every claim / prior / posterior (``kinds`` among BELIEF_KINDS)."""
@@ -168,7 +168,7 @@ class Tx:
             values.update({f"{kind}_{c}": None for c in cols})
         if values:
             self.session.execute(update(Ownership).values(**values))
-            self.session.expire_all()
+            self._expire(Ownership)
 
     # -- permissions ----------------------------------------------------------------------------
     def permissions(self, object_id: int | None = None) -> list[Permission]:
@@ -307,8 +307,14 @@ class Tx:
         table = {"perms": Permission, "rules": RuleRow, "context": Conversation}[what]
         count = self.session.scalar(select(func.count()).select_from(table)) or 0
         self.session.execute(delete(table))
-        self.session.expire_all()
+        self._expire(table)
         return int(count)
+
+    def _expire(self, model: type[Base]) -> None:
+        """Forget cached rows of ``model`` after a bulk statement changed them behind the session."""
+        for row in list(self.session.identity_map.values()):
+            if isinstance(row, model):
+                self.session.expire(row)
 
     def _unique(self, model: type[Agent] | type[Object] | type[Area], name: str, kind: str) -> None:
         if self.session.scalar(select(model.id).where(model.name == name)) is not None:

@@ -2,7 +2,7 @@
 
 Pure: the caller reads the file (``source`` only names it in messages). Every key is checked;
 an unknown key is an error naming the file, the key and the valid keys. A ``[generator]`` section is
-handed to :func:`ownctl.world.generator.generate` (with the whole dict and an explicit random
+handed to :func:`ownctl.world.generator.generate` (with the file's agents and an explicit random
 generator); its world is merged with the explicit entries (explicit ones win on equal names).
 ``[[steps]]`` belong to scenarios and are ignored here.
 """
@@ -124,28 +124,37 @@ def check_norm(source: str, text: Any, agents: Sequence[str], areas: Sequence[st
     return norm.text()
 
 
-def _generated(data: Mapping[str, Any], source: str, rng: Any) -> World | None:
+def _generated(data: Mapping[str, Any], source: str, agents: Sequence[str], rng: Any) -> World | None:
+    """The world drawn by ``ownctl.world.generator`` from the ``[generator]`` table, if there is one."""
     if "generator" not in data:
         return None
     if importlib.util.find_spec("ownctl.world.generator") is None:
         raise OwnctlError(f"{source}: generator worlds need ownctl.world.generator, which is not installed")
-    from ownctl.world import generator  # type: ignore[attr-defined]
+    from ownctl.world import generator
 
-    return generator.generate(dict(data), rng)  # type: ignore[no-any-return]
+    table = data["generator"]
+    if not isinstance(table, Mapping):
+        raise BadValue(f"{source}: [generator] must be a table, got {table!r}")
+    try:
+        return generator.generate(dict(table), rng, tuple(agents))
+    except OwnctlError as exc:
+        raise type(exc)(f"{source}: [generator]: {exc.message}", exc.valid) from None
 
 
 def world_from_dict(data: Mapping[str, Any], source: str, rng: Any = None) -> World:
-    """Validate a parsed world/scenario file and build its :class:`World` (ground truth included)."""
+    """Validate a parsed world/scenario file and build its :class:`World` (ground truth included).
+
+    With a ``[generator]`` table, the generated world comes first: its agents, areas and norms are
+    used unless the file gives ``agents`` / ``norms`` itself; explicit areas and objects are added
+    to the generated ones and replace those of the same name.
+    """
     data = _keys(source, "the file", data, TOP_KEYS)
-    generated = _generated(data, source, rng)
     raw_agents = data.get("agents", [])
     if not isinstance(raw_agents, list):
         raise BadValue(f"{source}: agents must be a list of names, got {raw_agents!r}")
-    agents = list(
-        dict.fromkeys(
-            [*(generated.agents if generated else ()), *(_name(source, "agent", a) for a in raw_agents)]
-        )
-    )
+    explicit_agents = list(dict.fromkeys(_name(source, "agent", a) for a in raw_agents))
+    generated = _generated(data, source, explicit_agents, rng)
+    agents = explicit_agents or list(generated.agents if generated else ())
     areas = {a.name: a for a in (generated.areas if generated else ())}
     for i, table in enumerate(_list(source, data, "areas")):
         area = _area(source, i, table)
@@ -163,10 +172,9 @@ def world_from_dict(data: Mapping[str, Any], source: str, rng: Any = None) -> Wo
     raw_norms = data.get("norms", [])
     if not isinstance(raw_norms, list):
         raise BadValue(f"{source}: norms must be a list of rule texts, got {raw_norms!r}")
-    norms = [
-        *(generated.norms if generated else ()),
-        *(check_norm(source, n, agents, list(areas)) for n in raw_norms),
-    ]
+    norms = [check_norm(source, n, agents, list(areas)) for n in raw_norms]
+    if "norms" not in data and generated is not None:
+        norms = [check_norm(source, n, agents, list(areas)) for n in generated.norms]
     name = data.get("name", generated.name if generated else "")
     if not isinstance(name, str):
         raise BadValue(f"{source}: name must be a string, got {name!r}")

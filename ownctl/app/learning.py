@@ -1,0 +1,204 @@
+"""Learning in every instruction: prediction, rule induction and inference against the store.
+
+The store-facing half of the paper's integration (the core half is :mod:`ownctl.learn` and
+:mod:`ownctl.ownership`):
+
+- :func:`repredict` refits one agent's KLR on its claims and writes that agent's priors for every
+  object with one bulk statement (``disabled.prediction`` turns it off);
+- :func:`learn_from_permission` runs the conflict gate and induction on the stored examples of one
+  action, which see *prior* ownership (claims, else predictions);
+- :func:`learn_from_norm` runs cover rule / uncover rule for a given norm; allow norms are kept in the
+  setting ``allow.ACTION`` so the learner can subtract them again after re-induction;
+- :func:`reinfer` recomputes the posterior of the objects that carry permissions and clears stale
+  posteriors elsewhere (an object without permissions has its prior as posterior); decisions see
+  these posteriors. ``disabled.inference`` clears every posterior.
+
+Every function works inside the caller's transaction (``tx``).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from ownctl.app.beliefs import induction_belief, snapshot
+from ownctl.app.settings import to_config
+from ownctl.learn.evidence import Evidence, Vocabulary
+from ownctl.learn.induce import Outcome, learn_norm, learn_permission
+from ownctl.logic.rules import Norm, Rule, parse_rule
+from ownctl.logic.vocab import ACTIONS
+from ownctl.ownership.features import agent_features
+from ownctl.ownership.infer import posterior
+from ownctl.ownership.predict import KernelOwnershipModel
+from ownctl.world.model import positions
+
+if TYPE_CHECKING:
+    from ownctl.store.repo import Tx
+
+
+def _vocabulary(tx: Tx, snap: Any) -> Vocabulary:
+    return Vocabulary(
+        snap.agents,
+        tuple(sorted({o.color for o in snap.objects if o.color})),
+        tuple(a.name for a in snap.areas),
+        tuple(sorted({c for o in snap.objects for c in o.categories})),
+    )
+
+
+def repredict(tx: Tx, agents: Sequence[str], now: float) -> None:
+    """Refit the predictors of ``agents`` on their claims and store every object's prior for them."""
+    stored = tx.settings()
+    if stored.get("disabled.prediction"):
+        return
+    cfg = to_config(stored).predict
+    snap = snapshot(tx, now, induction_belief)
+    if not snap.objects:
+        return
+    claims = {(b.object_id, b.agent_id): b.claim_p for b in tx.ownership() if b.claim_p is not None}
+    agent_ids = {a.name: a.id for a in tx.agents()}
+    colors = tuple(sorted({o.color for o in snap.objects if o.color}))
+    pos = positions(snap.objects)
+    rows: list[dict[str, Any]] = []
+    for agent in agents:
+        aid = agent_ids[agent]
+        ages = np.array([o.last_touch.get(agent, np.nan) for o in snap.objects])
+        X = agent_features(pos, [o.color for o in snap.objects], ages, colors, cfg)
+        known = np.array([(oid, aid) in claims for oid in snap.ids])
+        targets = np.array([claims[(oid, aid)] for oid in np.array(snap.ids)[known]])
+        model = KernelOwnershipModel(cfg).fit(X[known], targets)
+        p = model.predict_proba(X)
+        rows += [
+            {
+                "object_id": oid,
+                "agent_id": aid,
+                "prior_p": float(v),
+                "prior_source": model.source_,
+                "prior_time": now,
+            }
+            for oid, v in zip(snap.ids, p, strict=True)
+        ]
+    tx.write_beliefs(rows)
+
+
+def _evidence(tx: Tx, action: str, now: float) -> tuple[Evidence, list[int], Any]:
+    perms = [p for p in tx.permissions() if p.action == action]
+    names = [o.name for o in map(tx.object_by_id, sorted({p.object_id for p in perms})) if o]
+    snap = snapshot(tx, now, induction_belief, only=names)
+    index = {oid: i for i, oid in enumerate(snap.ids)}
+    idx = [index[p.object_id] for p in perms]
+    frame = snap.frame().take(idx)
+    return Evidence(frame, [p.value for p in perms]), [p.object_id for p in perms], snap
+
+
+def _save_rules(
+    tx: Tx, action: str, rules: Sequence[Rule], ev: Evidence, names: list[str], now: float
+) -> None:
+    old = {r.text: r for r in tx.rules(action)}
+    out = []
+    for rule in rules:
+        text = rule.text()
+        if text in old:
+            out.append((text, old[text].origin, old[text].provenance))
+            continue
+        covered = ev.prob(ev.truth(rule)) >= 0.5
+        examples = [n for n, c, pos in zip(names, covered, ev.positives, strict=True) if c and pos]
+        out.append((text, "learned", {"examples": examples, "learned_at": now}))
+    tx.replace_rules(action, out, now)
+
+
+def _rules(tx: Tx, action: str) -> tuple[list[Rule], list[Rule]]:
+    rows = tx.rules(action)
+    return [parse_rule(r.text) for r in rows], [parse_rule(r.text) for r in rows if r.origin == "given"]
+
+
+def _allows(tx: Tx, action: str) -> list[Rule]:
+    from ownctl.logic.rules import parse_norm
+
+    return [parse_norm(t).rule for t in tx.settings().get(f"allow.{action}", [])]
+
+
+def learn_from_permission(tx: Tx, action: str, now: float) -> Outcome | None:
+    """The gate and induction after the newest permission of ``action`` was stored."""
+    stored = tx.settings()
+    if stored.get("frozen.rules"):
+        return None
+    ev, object_ids, snap = _evidence(tx, action, now)
+    if ev.n == 0:
+        return None
+    rules, given = _rules(tx, action)
+    names = [snap.objects[snap.ids.index(oid)].name for oid in object_ids]
+    out = learn_permission(
+        action,
+        rules,
+        _allows(tx, action),
+        ev,
+        ev.n - 1,
+        _vocabulary(tx, snap),
+        to_config(stored).learn,
+        given,
+    )
+    if out.induced:
+        _save_rules(tx, action, out.rules, ev, names, now)
+    return out
+
+
+def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outcome:
+    """Cover rule (forbid) or uncover rule (allow) for a given norm, against the stored examples."""
+    action = norm.rule.action
+    ev, object_ids, snap = _evidence(tx, action, now)
+    rules, _ = _rules(tx, action)
+    out = learn_norm(norm, rules, ev, _vocabulary(tx, snap), to_config(tx.settings()).learn)
+    names = [snap.objects[snap.ids.index(oid)].name for oid in object_ids]
+    if norm.sign == "allow":
+        key = f"allow.{action}"
+        texts = list(tx.settings().get(key, []))
+        if norm.text() not in texts:
+            tx.set_setting(key, [*texts, norm.text()])
+        _save_rules(tx, action, out.rules, ev, names, now)
+    else:
+        old = {r.text for r in tx.rules(action)}
+        new = [r for r in out.rules if r.text() not in old]
+        _save_rules(tx, action, [r for r in out.rules if r not in new], ev, names, now)
+        for r in new:
+            tx.add_rule(
+                action,
+                r.text(),
+                "given",
+                {"given": norm.text(), "speaker": speaker, "specialised": r != norm.rule},
+                now,
+            )
+    return out
+
+
+def reinfer(tx: Tx, now: float) -> None:
+    """Posteriors for objects with permissions; NULL elsewhere (the prior stands)."""
+    stored = tx.settings()
+    tx.clear_beliefs(["posterior"])
+    if stored.get("disabled.inference"):
+        return
+    perms = tx.permissions()
+    if not perms:
+        return
+    object_ids = sorted({p.object_id for p in perms})
+    rules = {a: [parse_rule(r.text) for r in tx.rules(a)] for a in ACTIONS}
+    snap = snapshot(tx, now, induction_belief, only=[o.name for o in map(tx.object_by_id, object_ids) if o])
+    index = {oid: i for i, oid in enumerate(snap.ids)}
+    values = {a: np.full(len(snap.ids), np.nan) for a in ACTIONS}
+    for p in perms:
+        values[p.action][index[p.object_id]] = p.value
+    post = posterior(snap.frame(), rules, values, to_config(stored).infer.noise)
+    agent_ids = {a.name: a.id for a in tx.agents()}
+    rows = [
+        {
+            "object_id": oid,
+            "agent_id": agent_ids[a],
+            "posterior_p": float(post[i, j]),
+            "posterior_source": "inference",
+            "posterior_time": now,
+        }
+        for i, oid in enumerate(snap.ids)
+        for j, a in enumerate(snap.agents)
+    ]
+    tx.write_beliefs(rows)
