@@ -1,8 +1,16 @@
-"""Why a simulated step failed. Each is a :class:`ScenarioFailed` (exit code 4 in the CLI)."""
+"""Why a simulated world or step failed.
+
+A world that cannot be laid out is a user error (:class:`~ownctl.errors.OwnctlError`, exit code 1);
+a failed step is a :class:`~ownctl.errors.ScenarioFailed` (exit code 4 in the CLI).
+"""
 
 from __future__ import annotations
 
-from ownctl.errors import ScenarioFailed
+from ownctl.errors import OwnctlError, ScenarioFailed
+
+
+class LayoutError(OwnctlError):
+    """The blocks do not fit on the reachable table (no valid spot near a block's mapped position)."""
 
 
 class SimStepFailed(ScenarioFailed):

@@ -19,18 +19,15 @@ from dataclasses import dataclass
 import numpy as np
 
 from sim import scene_config as cfg
+from sim.errors import LayoutError
 from sim.workspace import WORKSPACE_HALF, SimArea, SimBlock, WorkspaceMap
 
 SPACING = 0.02  # minimum Chebyshev distance between block centres (m)
 TIGHT_SPACING = 2 * cfg.BLOCK_HALF + 0.003  # fallback when SPACING cannot be met: blocks just do not touch
-WALL_CLEARANCE = 0.016  # block centre to the bin's outer faces (room for a finger)
+WALL_CLEARANCE = 0.016  # block centre to a bin wall's face (room for a finger)
 HOME_MARGIN = 0.004  # home grid cells keep their centres this far inside the home area
 RING_STEP = 0.003
 MAX_RINGS = 60
-
-
-class LayoutError(ValueError):
-    """The blocks do not fit: no valid spot within ``MAX_RINGS * RING_STEP`` of the wanted one."""
 
 
 @dataclass(frozen=True)
@@ -68,7 +65,7 @@ class _Layout:
         lo, hi = wmap.xy_to_world([-edge, -edge]), wmap.xy_to_world([edge, edge])
         pad = cfg.BLOCK_HALF + 0.002
         self.region = (lo[0] + pad, lo[1] + pad, hi[0] - pad, hi[1] - pad)
-        inner = cfg.BIN_WALL + cfg.BLOCK_HALF + 0.003
+        inner = cfg.BIN_WALL + WALL_CLEARANCE  # room for a finger between a block and the inside of a wall
         self.bin_inner = (self.bin[0] + inner, self.bin[1] + inner, self.bin[2] - inner, self.bin[3] - inner)
         self.accepted: list[np.ndarray] = []
 

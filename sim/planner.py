@@ -94,12 +94,20 @@ def grasp_yaw(
     target: BlockState, others: Sequence[BlockState], walls: Sequence[Rect], current: float
 ) -> float | None:
     """A closing yaw for grasping ``target`` with free fingers and palm, or None if both are blocked."""
+    if covered(target, others):
+        return None
     obstacles = [b.rect() for b in others] + list(walls)
     center = np.asarray(target.center[:2])
     for yaw in closing_options(target.yaw, current):
         if hand_clear(center, yaw, PICK_OPENING, target.center[2], obstacles):
             return float(yaw)
     return None
+
+
+def covered(target: BlockState, others: Sequence[BlockState]) -> bool:
+    """True if another block rests on ``target`` (overlaps its footprint and sits higher)."""
+    top = target.rect()
+    return any(b.center[2] > target.center[2] + H and overlap(top, b.rect(), 0.0) for b in others)
 
 
 @dataclass(frozen=True)
@@ -143,17 +151,16 @@ def home_put_down(
 
 
 def bin_cells(bin_box: tuple[float, float, float, float], pitch: float = 0.02) -> list[tuple[float, float]]:
-    """Drop points in the bin: a grid ``pitch`` apart keeping open fingers off the walls, centre first."""
+    """Drop points in the bin, centre first: a grid at least ``pitch`` apart, spread out to where open
+    fingers still clear the walls, so dropped blocks land apart and can be picked up again.
+    """
     x0, y0, x1, y1 = bin_box
     reach = DROP_OPENING + baxter.FINGER_THICK + MARGIN + 0.002
     half = (np.array([x1 - x0, y1 - y0]) / 2) - cfg.BIN_WALL - reach
     centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
     counts = [max(1, int(2 * half[k] // pitch) + 1) for k in (0, 1)]
-    pts = [
-        centre + np.array([dx, dy])
-        for dx in (np.arange(counts[0]) - (counts[0] - 1) / 2) * pitch
-        for dy in (np.arange(counts[1]) - (counts[1] - 1) / 2) * pitch
-    ]
+    axes = [np.linspace(-half[k], half[k], counts[k]) if counts[k] > 1 else np.zeros(1) for k in (0, 1)]
+    pts = [centre + np.array([dx, dy]) for dx in axes[0] for dy in axes[1]]
     pts.sort(key=lambda p: (round(float(np.linalg.norm(p - centre)), 6), float(p[0]), float(p[1])))
     return [(float(p[0]), float(p[1])) for p in pts]
 
@@ -161,11 +168,14 @@ def bin_cells(bin_box: tuple[float, float, float, float], pitch: float = 0.02) -
 def drop_point(
     cells: Sequence[tuple[float, float]], blocks: Sequence[BlockState]
 ) -> tuple[float, float, float]:
-    """The bin cell with the lowest pile (ties: first cell) and the pile's top height there."""
+    """The bin cell with the lowest pile (ties: first cell) and the pile's top height there.
+
+    A pile counts every block within 2 block widths of the cell's centre (tilted ones included).
+    """
     floor = cfg.TABLE_TOP + cfg.BIN_FLOOR
     best: tuple[float, int] | None = None
     for k, cell in enumerate(cells):
-        near = [b.center[2] + H for b in blocks if np.hypot(*(np.asarray(b.center[:2]) - cell)) < 2.5 * H]
+        near = [b.center[2] + 1.5 * H for b in blocks if np.hypot(*(np.asarray(b.center[:2]) - cell)) < 4 * H]
         top = max(near, default=floor)
         if best is None or (top, k) < best:
             best = (top, k)

@@ -8,7 +8,9 @@ with a top-down hand, solved by IK at every control tick and tracked by the join
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable
+from dataclasses import dataclass
 
 import mujoco
 import numpy as np
@@ -30,6 +32,17 @@ PARK: dict[str, tuple[float, float, float]] = {  # idle hand positions: high and
     "left": (0.42, 0.40, cfg.TABLE_TOP + 0.25),
     "right": (0.42, -0.40, cfg.TABLE_TOP + 0.25),
 }
+
+
+@dataclass(frozen=True)
+class Snapshot:
+    """Everything needed to put the simulation back: a copy of ``MjData`` and the arms' commands."""
+
+    data: mujoco.MjData
+    qcmd: dict[str, Vec]
+    target: dict[str, Vec]
+    yaw: dict[str, float]
+    held: dict[str, int | None]
 
 
 def min_jerk(s: float) -> float:
@@ -96,6 +109,24 @@ class Robot:
         ticks = max(1, int(round(seconds / (self.model.opt.timestep * CTRL_EVERY))))
         for _ in range(ticks):
             self.step(CTRL_EVERY)
+
+    def snapshot(self) -> Snapshot:
+        """A deep copy of the simulation state and the arms' commands."""
+        return Snapshot(
+            copy.copy(self.data),
+            copy.deepcopy(self.qcmd),
+            copy.deepcopy(self.target),
+            dict(self.yaw),
+            dict(self.held),
+        )
+
+    def restore(self, snap: Snapshot) -> None:
+        """Put the simulation back to ``snap`` (in place: ``self.data`` stays the same object)."""
+        mujoco.mj_copyData(self.data, self.model, snap.data)
+        self.qcmd, self.target = copy.deepcopy(snap.qcmd), copy.deepcopy(snap.target)
+        self.yaw, self.held = dict(snap.yaw), dict(snap.held)
+        mujoco.mj_forward(self.model, self.data)
+        self._bad = self.data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number
 
     # ----------------------------------------------------------------- motion
     def grip_pos(self, side: str) -> Vec:

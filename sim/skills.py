@@ -22,6 +22,7 @@ from sim.planner import (
     PLACE_OPENING,
     BlockState,
     bin_cells,
+    covered,
     drop_point,
     grasp_yaw,
     home_put_down,
@@ -100,10 +101,12 @@ class Skills:
     # ----------------------------------------------------------------- skills
     def plan_grasp(self, side: str, block: int) -> float:
         """Closing yaw for picking ``block`` with ``side``; raises if blocked."""
-        target = self.state(block)
-        yaw = grasp_yaw(target, self.others(block), self.walls, YAW_CENTER[side])
+        target, others = self.state(block), self.others(block)
+        if covered(target, others):
+            raise GraspFailed("no collision-free grasp: another block lies on top of it")
+        yaw = grasp_yaw(target, others, self.walls, YAW_CENTER[side])
         if yaw is None:
-            raise GraspFailed(f"no collision-free grasp for block {block}: neighbours too close on both axes")
+            raise GraspFailed("no collision-free grasp: neighbours or walls too close on both sides")
         return yaw
 
     def pick(self, side: str, block: int, yaw: float) -> Held:
@@ -117,7 +120,7 @@ class Skills:
         if self.weld and not robot.attach(side, block):
             robot.set_gripper(side, PICK_OPENING, seconds=0.1)
             robot.move(side, np.array([x, y, HOVER]), speed=SLOW)
-            raise GraspFailed(f"the fingers did not close on block {block}")
+            raise GraspFailed("the fingers did not close on the block")
         site = robot.ik[side].site
         rot = robot.data.site_xmat[site].reshape(3, 3)
         now = self.state(block)
@@ -127,7 +130,7 @@ class Skills:
         robot.move(side, np.array([x, y, HOVER]), speed=SLOW)
         if self.state(block).center[2] < cfg.TABLE_TOP + 0.06:
             self.release(side, PICK_OPENING)
-            raise GraspFailed(f"block {block} slipped out of the {side} gripper while lifting")
+            raise GraspFailed(f"the block slipped out of the {side} gripper while lifting")
         return held
 
     def grip_target(self, held: Held, center: Vec, yaw: float) -> Vec:
@@ -144,7 +147,7 @@ class Skills:
         site = self.robot.data.site_xpos[self.robot.ik[side].site]
         if np.linalg.norm(np.asarray(self.state(held.block).center) - site) > 0.02:
             self.release(side, PICK_OPENING)
-            raise GraspFailed(f"block {held.block} was lost while carrying it")
+            raise GraspFailed("the block was lost while carrying it")
 
     def plan_drop(self, block: int) -> tuple[float, float, float]:
         """Bin drop point (x, y, pile top z) for ``block``."""

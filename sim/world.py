@@ -11,19 +11,19 @@ before the action (never MuJoCo's silent reset) and fails the step.
 
 from __future__ import annotations
 
-import copy
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
+from ownctl.errors import BadValue, DuplicateName, UnknownName
 from sim import baxter
 from sim.errors import PhysicsUnstable, SimStepFailed, Unreachable
 from sim.layout import home_slots, place_blocks
 from sim.planner import PICK_OPENING
 from sim.render import Recorder
-from sim.robot import Robot
+from sim.robot import Robot, Snapshot
 from sim.scene import BlockSpec, block_body, scene_xml
 from sim.skills import HOVER, Held, Skills
 from sim.workspace import SimArea, SimBlock, WorkspaceMap, with_default_areas
@@ -31,6 +31,7 @@ from sim.workspace import SimArea, SimBlock, WorkspaceMap, with_default_areas
 __all__ = ["PhysicsWorld", "SimArea", "SimBlock", "StepOutcome", "WorkspaceMap"]
 
 ARMS = ("auto", "left", "right")
+SETTLE = 0.3  # seconds the world runs after an action before the result is checked
 GRASPS = ("weld", "friction")
 
 
@@ -78,12 +79,13 @@ class PhysicsWorld:
         import mujoco
 
         if arm not in ARMS:
-            raise ValueError(f"unknown arm {arm!r}; known arms: {', '.join(ARMS)}")
+            raise BadValue(f"unknown arm {arm!r}; known arms: {', '.join(ARMS)}", ARMS)
         if grasp not in GRASPS:
-            raise ValueError(f"unknown grasp {grasp!r}; known grasps: {', '.join(GRASPS)}")
+            raise BadValue(f"unknown grasp {grasp!r}; known grasps: {', '.join(GRASPS)}", GRASPS)
         names = [b.name for b in blocks]
-        if len(set(names)) != len(names):
-            raise ValueError("block names must be unique")
+        repeated = sorted({n for n in names if names.count(n) > 1})
+        if repeated:
+            raise DuplicateName(f"block names must be unique; repeated: {', '.join(repeated)}")
         _quiet_mujoco_log()
         self.map = workspace_map or WorkspaceMap()
         self.areas = with_default_areas(list(areas))
@@ -115,8 +117,7 @@ class PhysicsWorld:
 
     def _check_name(self, name: str) -> int:
         if name not in self.index:
-            known = ", ".join(sorted(self.index)) or "(none)"
-            raise KeyError(f"unknown object {name!r}; known objects: {known}")
+            raise UnknownName("object", name, self.index)
         return self.index[name]
 
     def position(self, name: str) -> tuple[float, float, float]:
@@ -182,52 +183,46 @@ class PhysicsWorld:
         if not self.skills.reachable(side, poses):
             raise Unreachable(f"the {side} arm cannot reach every pose of this action")
 
-    def _act(self, action: str, name: str, body: object) -> StepOutcome:
+    def _act(self, action: str, name: str, body: Callable[[int], str]) -> StepOutcome:
         """Run one action; turn failures into a failed outcome, restoring the state on instability."""
         block = self._check_name(name)
         start = self.sim_time
-        snapshot = (
-            copy.copy(self.data),
-            copy.deepcopy(self.robot.qcmd),
-            copy.deepcopy(self.robot.target),
-            dict(self.robot.yaw),
-            dict(self.robot.held),
-        )
+        snapshot = self.robot.snapshot()
         try:
-            area = body(block)  # type: ignore[operator]
-            self.robot.wait(0.3)
+            area = body(block)
+            self.robot.wait(SETTLE)
         except PhysicsUnstable as exc:
             elapsed = self.sim_time - start
-            self._restore(snapshot)
+            self.robot.restore(snapshot)
             return StepOutcome(False, action, name, str(exc), elapsed)
         except SimStepFailed as exc:
-            self._recover()
-            return StepOutcome(False, action, name, str(exc), self.sim_time - start)
+            elapsed = self._recover(snapshot) + self.sim_time - start
+            return StepOutcome(False, action, name, str(exc), elapsed)
         if not self.in_area(name, area):
-            return StepOutcome(
-                False, action, name, f"{name} ended outside the {area} area", self.sim_time - start
-            )
+            message = f"{name} ended outside the {area} area"
+            return StepOutcome(False, action, name, message, self.sim_time - start)
         return StepOutcome(True, action, name, None, self.sim_time - start)
 
-    def _restore(self, snapshot: tuple) -> None:  # type: ignore[type-arg]
-        import mujoco
+    def _recover(self, snapshot: Snapshot) -> float:
+        """After a failed skill: let go and park both arms; if that breaks the physics, restore ``snapshot``.
 
-        data, qcmd, target, yaw, held = snapshot
-        mujoco.mj_copyData(self.data, self.model, data)
-        self.robot.qcmd, self.robot.target, self.robot.yaw, self.robot.held = qcmd, target, yaw, held
-        self.robot._bad = self.data.warning[mujoco.mjtWarning.mjWARN_BADQACC].number
-        mujoco.mj_forward(self.model, self.data)
-
-    def _recover(self) -> None:
-        """After a failed skill: let go of anything held and park both arms (best effort)."""
+        Returns the sim time lost to a restore (0 otherwise), so outcomes still count it.
+        """
         for side in baxter.SIDES:
             self.robot.detach(side)
         try:
             for side in baxter.SIDES:
                 self.robot.set_gripper(side, PICK_OPENING, seconds=0.0)
                 self.skills.park(side)
-        except SimStepFailed:
-            pass
+        except PhysicsUnstable:
+            lost = self.sim_time - snapshot.data.time
+            self.robot.restore(snapshot)
+            return lost
+        return 0.0
+
+    def close(self) -> None:
+        """Release the renderer's OpenGL context, if one was made."""
+        self.recorder.close()
 
     # ----------------------------------------------------------------- rendering
     def render_png(self, path: str | Path, camera: str = "front") -> Path:

@@ -5,6 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from ownctl.errors import BadValue, DuplicateName, UnknownName
 from sim.world import PhysicsWorld, SimArea, SimBlock, StepOutcome
 
 AREAS = [SimArea("trash", (-0.3, 0.6, 0.2, 1.1)), SimArea("home", (-0.1, -0.1, 0.1, 0.1))]
@@ -89,8 +90,17 @@ def test_physics_instability_fails_the_step_and_restores_the_state() -> None:
 
 
 def test_unknown_object_is_an_error_naming_the_known_ones() -> None:
-    with pytest.raises(KeyError, match="known objects: blue1, green1, home1, near1, red1"):
+    with pytest.raises(UnknownName, match="known objects: blue1, green1, home1, near1, red1"):
         _world().trash("thrash")
+
+
+def test_bad_settings_are_errors_listing_the_valid_values() -> None:
+    with pytest.raises(BadValue, match="known arms: auto, left, right"):
+        _world(arm="middle")
+    with pytest.raises(BadValue, match="known grasps: weld, friction"):
+        _world(grasp="suction")
+    with pytest.raises(DuplicateName, match="repeated: a"):
+        PhysicsWorld([SimBlock("a", None, None), SimBlock("a", None, None)], AREAS)
 
 
 def test_out_of_reach_forced_arm_fails_without_moving_anything() -> None:
