@@ -9,6 +9,8 @@ from typing import TYPE_CHECKING
 
 import pytest
 
+from tests.cli.conftest import TABLE_WORLD, build_template, from_template
+
 if TYPE_CHECKING:
     from tests.cli.conftest import Ownctl
 
@@ -84,11 +86,16 @@ USAGE_ERRORS: list[tuple[str, ...]] = [
 ]
 
 
+@pytest.fixture(scope="module")
+def _world_store(tmp_path_factory: pytest.TempPathFactory) -> bytes:
+    extra = [("forbid", "pickUp", "if", "ownedBy", "xuan"), ("forbid", "trash", "on", "wallet")]
+    return build_template(tmp_path_factory, [*TABLE_WORLD, *extra])
+
+
 @pytest.fixture
-def world(table_world: Ownctl) -> Ownctl:
-    table_world("forbid", "pickUp", "if", "ownedBy", "xuan")
-    table_world("forbid", "trash", "on", "wallet")
-    return table_world
+def world(tmp_path: Path, _world_store: bytes) -> Ownctl:
+    """The table world with a rule naming xuan and a permission."""
+    return from_template(tmp_path / "store.db", _world_store)
 
 
 @pytest.mark.parametrize("args", USER_ERRORS, ids=lambda a: " ".join(a)[:40])
