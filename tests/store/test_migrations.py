@@ -11,7 +11,7 @@ from alembic.runtime.migration import MigrationContext
 from alembic.script import ScriptDirectory
 from sqlalchemy import create_engine
 
-from ownctl.store.migrate import alembic_config, head_revision, migrations_dir
+from ownctl.store.migrate import alembic_config, head_revision, known_revisions, migrations_dir
 from ownctl.store.models import Base
 
 
@@ -53,3 +53,9 @@ def test_every_revision_has_a_downgrade_and_named_constraints() -> None:
         source = Path(rev.path).read_text()
         assert "def downgrade()" in source and "op.f(" in source
     assert (migrations_dir() / "versions").is_dir()
+
+
+def test_revision_reading_agrees_with_alembic() -> None:
+    script = ScriptDirectory(str(migrations_dir()))
+    assert known_revisions() == [r.revision for r in reversed(list(script.walk_revisions()))]
+    assert head_revision() == script.get_current_head()
