@@ -9,9 +9,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from ownctl.app.context import AppContext
+from ownctl.app.context import AppContext, Done
 from ownctl.app.settings import FLAGS, check_key, effective, parse_value
-from ownctl.app.things import Done
 from ownctl.errors import OwnctlError
 
 RESETS = ("perms", "rules", "claims", "all")

@@ -19,6 +19,14 @@ if TYPE_CHECKING:
     from ownctl.store.repo import Tx
 
 
+@dataclass(frozen=True)
+class Done:
+    """The outcome of a mutating use case: ``message`` for people, ``data`` for --json."""
+
+    message: str
+    data: dict[str, Any] = field(default_factory=dict)
+
+
 @dataclass
 class AppContext:
     """A store reference plus the instruction's circumstances.

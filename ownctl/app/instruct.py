@@ -17,9 +17,8 @@ from __future__ import annotations
 from typing import Any
 
 from ownctl.app.beliefs import after_claims, after_permissions
-from ownctl.app.context import AppContext
+from ownctl.app.context import AppContext, Done
 from ownctl.app.settings import probability
-from ownctl.app.things import Done
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
 from ownctl.logic.vocab import action as check_action

@@ -10,9 +10,8 @@ from typing import Any
 import numpy as np
 
 from ownctl.app.beliefs import decision_belief, snapshot
-from ownctl.app.context import AppContext
+from ownctl.app.context import AppContext, Done
 from ownctl.app.settings import probability
-from ownctl.app.things import Done
 from ownctl.errors import OwnctlError
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import parse_rule

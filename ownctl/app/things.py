@@ -8,24 +8,15 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 from typing import Any
 
 from ownctl.app.beliefs import after_claims
-from ownctl.app.context import AppContext
+from ownctl.app.context import AppContext, Done
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.names import check_name
 from ownctl.logic.rules import parse_rule
 
 NONE = "none"  # as a percept value: clear it
-
-
-@dataclass(frozen=True)
-class Done:
-    """The outcome of a mutating use case: ``message`` for people, ``data`` for --json."""
-
-    message: str
-    data: dict[str, Any] = field(default_factory=dict)
 
 
 def parse_numbers(what: str, text: str, sizes: Sequence[int]) -> tuple[float, ...]:

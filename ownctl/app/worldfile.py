@@ -13,8 +13,7 @@ from pathlib import Path
 from typing import Any
 
 from ownctl.app.beliefs import object_spec
-from ownctl.app.context import AppContext
-from ownctl.app.things import Done
+from ownctl.app.context import AppContext, Done
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.world.model import Area, World
 from ownctl.world.spec import to_toml, world_from_dict, world_to_dict

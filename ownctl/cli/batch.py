@@ -47,9 +47,7 @@ def _words(line: str, where: str) -> list[str]:
 
 def batch(
     ctx: typer.Context,
-    file: Annotated[
-        str, typer.Argument(metavar="FILE|-", help="The instructions, one per line; - reads stdin.")
-    ],
+    file: Annotated[str, typer.Argument(help="The instructions, one per line; - reads stdin.")],
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:

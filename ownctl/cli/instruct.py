@@ -10,7 +10,7 @@ from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
 from ownctl.errors import RuleSyntaxError
 
 if TYPE_CHECKING:
-    from ownctl.app.things import Done
+    from ownctl.app.context import Done
 
 claims = typer.Typer(help="Ownership claims.", no_args_is_help=True)
 
@@ -20,8 +20,8 @@ Words = Annotated[list[str] | None, typer.Argument(help="'on OBJECT', or 'if LIT
 
 def claim(
     ctx: typer.Context,
-    obj: Annotated[str, typer.Argument(metavar="OBJECT")],
-    agent: Annotated[str, typer.Argument(metavar="AGENT")],
+    obj: Annotated[str, typer.Argument(help="The object.")],
+    agent: Annotated[str, typer.Argument(help="The agent.")],
     p: Annotated[float, typer.Option("--p", help="How sure the speaker is, in [0, 1].")] = 1.0,
     negated: Annotated[
         bool, typer.Option("--not", help="The agent does NOT own it (stores 1 - trust*p).")
@@ -65,7 +65,12 @@ def _instruct(
 
 def forbid(
     ctx: typer.Context,
-    action: Annotated[str, typer.Argument(metavar="ACTION")],
+    action: Annotated[
+        str,
+        typer.Argument(
+            help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
+        ),
+    ],
     words: Words = None,
     p: Annotated[float, typer.Option("--p", help="With 'on': how sure, in [0, 1] (stored value p).")] = 1.0,
     speaker: SpeakerOpt = None,
@@ -82,7 +87,12 @@ def forbid(
 
 def allow(
     ctx: typer.Context,
-    action: Annotated[str, typer.Argument(metavar="ACTION")],
+    action: Annotated[
+        str,
+        typer.Argument(
+            help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
+        ),
+    ],
     words: Words = None,
     p: Annotated[
         float, typer.Option("--p", help="With 'on': how sure, in [0, 1] (stored value 1 - p).")

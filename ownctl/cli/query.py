@@ -16,8 +16,13 @@ EXIT_FORBIDDEN = 3
 
 def check(
     ctx: typer.Context,
-    action: Annotated[str, typer.Argument(metavar="ACTION")],
-    obj: Annotated[str, typer.Argument(metavar="OBJECT")],
+    action: Annotated[
+        str,
+        typer.Argument(
+            help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
+        ),
+    ],
+    obj: Annotated[str, typer.Argument(help="The object.")],
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
@@ -52,9 +57,7 @@ def check(
 
 def owners(
     ctx: typer.Context,
-    obj: Annotated[
-        str | None, typer.Argument(metavar="[OBJECT]", help="The object whose owners to show.")
-    ] = None,
+    obj: Annotated[str | None, typer.Argument(help="The object whose owners to show.")] = None,
     agent: Annotated[
         str | None, typer.Option("--agent", help="Instead: the objects this agent owns.")
     ] = None,
