@@ -23,15 +23,21 @@ class LearnConfig:
 
 @dataclass(frozen=True)
 class PredictConfig:
-    """Per-agent kernel logistic regression on percepts (DESIGN section 5)."""
+    """Per-agent kernel logistic regression on percepts (DESIGN section 5).
 
-    color_weight: float = 0.5
-    position_weight: float = 1.0
-    recency_weight: float = 1.0  # weight of log1p(seconds since the agent last touched the object)
-    gamma: float = 1.0
-    C: float = 10.0
-    min_claims: int = 2  # below this, the calibrated prior is used
-    base_rate: float = 0.25  # prior ownership for an agent with too few claims (never 0.5)
+    Position and log-recency are standardised over the known objects before weighting, so the
+    weights and the kernel width are in units of their spread (tuned on Table 2, see
+    ``ownctl.experiment.ownership``).
+    """
+
+    color_weight: float = 0.25  # colour mismatch adds color_weight**2 to the squared distance
+    position_weight: float = 1.0  # per unit of the objects' position spread (RMS distance from their mean)
+    recency_weight: float = 1.0  # per unit of spread of log1p(seconds since the agent last touched it)
+    gamma: float = 0.3  # RBF kernel width: k = exp(-gamma * squared distance)
+    C: float = 10.0  # inverse regularisation of the kernel and linear parts
+    intercept_scale: float = 1.0  # prior std (logits) of the intercept around logit(base_rate)
+    min_claims: int = 1  # below this, the calibrated prior is used
+    base_rate: float = 0.25  # prior ownership of an agent without claims (never 0.5)
 
 
 @dataclass(frozen=True)

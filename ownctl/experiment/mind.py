@@ -9,7 +9,7 @@ prediction. Experiments drive a Mind directly (no store), so trials are fast.
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -23,7 +23,7 @@ from ownctl.logic.vocab import ACTIONS
 from ownctl.ownership.features import agent_features
 from ownctl.ownership.infer import posterior
 from ownctl.ownership.predict import KernelOwnershipModel
-from ownctl.world.model import Area, ObjectSpec, make_frame, positions
+from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
 
 
 @dataclass
@@ -58,6 +58,9 @@ class Mind:
         self.index = {o.name: i for i, o in enumerate(self.objects)}
         self._base = make_frame(self.objects, self.areas, self.agents, np.zeros((n, m)))
         self._posterior: np.ndarray | None = None
+        self._stale: set[int] = set()  # agents whose predictions must be refitted before use
+        self._seen = self._base  # percepts as they were when each object's permissions were given
+        self._permitted = np.zeros(n, dtype=bool)
         self.vocab = Vocabulary(
             self.agents,
             tuple(sorted({o.color for o in self.objects if o.color})),
@@ -69,7 +72,15 @@ class Mind:
     @property
     def prior(self) -> np.ndarray:
         """Claims where they exist, else predictions (n, m)."""
+        self._refresh()
         return np.where(np.isnan(self.claims), self.predicted, self.claims)
+
+    def _refresh(self) -> None:
+        """Refit the predictors made stale by claims or moves (predictions are a pure function of
+        the claims and the percepts, so computing them when first needed changes no result)."""
+        for j in sorted(self._stale):
+            self._predict(j)
+        self._stale.clear()
 
     def frame(self, own: np.ndarray | None = None) -> Frame:
         """The evaluation frame of all objects with ``own`` (default: the posterior)."""
@@ -82,7 +93,7 @@ class Mind:
             if not self.switches.inference:
                 self._posterior = prior
             else:
-                self._posterior = posterior(self._base.with_own(prior), self.rules, self.perms,
+                self._posterior = posterior(self._seen.with_own(prior), self.rules, self.perms,
                                             self.settings.infer.noise)
         return self._posterior
 
@@ -97,9 +108,18 @@ class Mind:
         if exclusive:
             others = [k for k in range(len(self.agents)) if k != j]
             self.claims[obj, others] = 0.0
-            for k in others:
-                self._predict(k)
-        self._predict(j)
+            self._stale.update(others)
+        self._stale.add(j)
+        self._changed()
+
+    def move(self, obj: int, position: Position | None) -> None:
+        """Object ``obj`` is now at ``position``: areas and percept-based predictions follow it."""
+        self.objects[obj] = replace(self.objects[obj], position=position)
+        n, m = len(self.objects), len(self.agents)
+        self._base = make_frame(self.objects, self.areas, self.agents, np.zeros((n, m)))
+        if not self._permitted[obj]:
+            self._snapshot(obj)
+        self._stale.update(j for j in range(m) if not np.isnan(self.claims[:, j]).all())
         self._changed()
 
     def _predict(self, j: int) -> None:
@@ -113,10 +133,22 @@ class Mind:
         model = KernelOwnershipModel(cfg).fit(X[known], self.claims[known, j])
         self.predicted[:, j] = model.predict_proba(X)
 
+    def _snapshot(self, obj: int) -> None:
+        """Remember object ``obj``'s current area membership as the state its permissions describe."""
+        areas = {k: v.copy() for k, v in self._seen.areas.items()}
+        for k, v in self._base.areas.items():
+            areas[k][obj] = v[obj]
+        self._seen = Frame(self._base.agents, self._base.own, self._base.colors, areas, self._base.categories)
+
     def evidence(self, action: str) -> tuple[Evidence, list[int]]:
-        """The stored permissions of ``action`` (arrival order) evaluated on prior ownership."""
+        """The stored permissions of ``action`` (arrival order) evaluated on prior ownership.
+
+        Each example keeps the percepts its object had when its permissions were last given: a
+        permission describes the object where it was, not where the robot put it afterwards (the
+        original system re-evaluated examples after moves, so ``inArea trash`` explained them).
+        """
         idx = self.order[action]
-        frame = self._base.with_own(self.prior).take(idx)
+        frame = self._seen.with_own(self.prior).take(idx)
         return Evidence(frame, self.perms[action][idx]), idx
 
     def permit(self, action: str, obj: int, value: float) -> Outcome | None:
@@ -127,6 +159,8 @@ class Mind:
             self.order[action].remove(obj)
         self.order[action].append(obj)
         self.perms[action][obj] = value
+        self._permitted[obj] = True
+        self._snapshot(obj)
         self._changed()
         if self.switches.frozen_rules:
             return None

@@ -17,8 +17,9 @@ import numpy as np
 from ownctl.config import LearnConfig, Settings
 from ownctl.experiment.metrics import Scores, rule_scores
 from ownctl.experiment.mind import Mind, Switches
+from ownctl.experiment.result import TrialResult
+from ownctl.experiment.truth import true_rules
 from ownctl.logic.prob import p_forbidden
-from ownctl.logic.rules import Rule, parse_rule
 from ownctl.world.model import World, make_frame
 
 WorldFactory = Callable[[np.random.Generator], World]
@@ -45,16 +46,8 @@ NORM_CONDITIONS = (
 )
 
 
-def true_rules(world: World) -> dict[str, tuple[Rule, ...]]:
-    """The world's true norms grouped by action, in the order the norms are listed."""
-    out: dict[str, list[Rule]] = {}
-    for text in world.norms:
-        rule = parse_rule(text)
-        out.setdefault(rule.action, []).append(rule)
-    return {a: tuple(r) for a, r in out.items()}
-
-
-def noisy_labels(truth: np.ndarray, rng: np.random.Generator, mean: float = 0.6, dev: float = 0.2) -> np.ndarray:
+def noisy_labels(truth: np.ndarray, rng: np.random.Generator, mean: float = 0.6,
+                 dev: float = 0.2) -> np.ndarray:
     """The paper's noisy ownership labels: ``mean`` if owned else ``1 - mean``, +- U(dev), clipped."""
     base = np.where(truth >= 0.5, mean, 1.0 - mean)
     return np.clip(base + rng.uniform(-dev, dev, size=truth.shape), 0.0, 1.0)
@@ -79,3 +72,9 @@ def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
             for action in rules:
                 mind.permit(action, int(obj), float(answers[action][obj]))
     return {a: rule_scores(answers[a], p_forbidden(mind.rules[a], true_frame)) for a in rules}
+
+
+def norms_result(make_world: WorldFactory, cond: NormCondition, learner: str,
+                 rng: np.random.Generator) -> TrialResult:
+    """:func:`norms_trial` as a trial result: group ``rules``, one row per action with a true norm."""
+    return TrialResult({"rules": norms_trial(make_world, cond, learner, rng)})

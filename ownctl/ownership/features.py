@@ -4,6 +4,11 @@ Per agent, an object is described by its position, its colour and how recently t
 it, on a log scale: ``log1p(age in seconds)``. The original system used raw seconds, which makes
 every rarely-touched object look unlike every other (reference section 9.3); interaction times are
 exponential, so their logarithm is the natural scale.
+
+Position and log-recency are standardised by their spread over the rows given (pass every object
+the robot knows, not just the claimed ones), so the kernel sees both in comparable units whatever
+the size of the workspace or the time scale of interactions; the weights then set their relative
+importance. Colour is a one-hot code whose mismatch costs ``color_weight**2`` in squared distance.
 """
 
 from __future__ import annotations
@@ -15,6 +20,15 @@ import numpy as np
 from ownctl.config import PredictConfig
 
 NEVER_AGE = 1.0e6  # seconds: the age used for an agent that never touched the object
+MIN_SCALE = 1e-6
+
+
+def _spread(values: np.ndarray) -> float:
+    """Root-mean-square distance of the rows from their mean (1 when there is no spread)."""
+    if len(values) < 2:
+        return 1.0
+    rms = float(np.sqrt(((values - values.mean(axis=0)) ** 2).sum(axis=1).mean()))
+    return rms if rms > MIN_SCALE else 1.0
 
 
 def agent_features(
@@ -24,14 +38,18 @@ def agent_features(
     palette: Sequence[str | None],
     cfg: PredictConfig,
 ) -> np.ndarray:
-    """(n, d) weighted features for one agent: scaled xyz, scaled colour one-hot, scaled log-recency.
+    """(n, d) weighted features for one agent: standardised xyz, colour one-hot, standardised log-recency.
 
-    ``positions`` (n, 3) may hold NaN (unknown position: centred at 0); ``ages`` (n,) may hold NaN
-    (never touched). Squared Euclidean distance between rows is the kernel's distance: position
-    weight times metres, colour mismatch adds ``color_weight**2``, recency weight times log-seconds.
+    ``positions`` (n, 3) may hold NaN (unknown position: placed at the mean position); ``ages`` (n,)
+    may hold NaN (never touched: ``NEVER_AGE``). The squared Euclidean distance between rows is the
+    kernel's distance.
     """
-    pos = np.nan_to_num(np.asarray(positions, dtype=float).reshape(-1, 3), nan=0.0)
+    pos = np.asarray(positions, dtype=float).reshape(-1, 3)
     n = len(pos)
+    known = ~np.isnan(pos).any(axis=1)
+    centre = pos[known].mean(axis=0) if known.any() else np.zeros(3)
+    pos = np.where(known[:, None], pos, centre[None, :])
+    pos = (pos - centre) / _spread(pos[known]) if known.any() else pos
     onehot = np.zeros((n, max(len(palette), 1)))
     index = {c: i for i, c in enumerate(palette)}
     for i, c in enumerate(colors):
@@ -40,6 +58,7 @@ def agent_features(
     age = np.asarray(ages, dtype=float).reshape(n)
     age = np.where(np.isnan(age), NEVER_AGE, np.maximum(age, 0.0))
     recency = np.log1p(age)[:, None]
+    recency = (recency - recency.mean()) / _spread(recency) if n else recency
     return np.hstack(
         [
             cfg.position_weight * pos,

@@ -1,0 +1,162 @@
+"""Use case: run one of the paper's experiments in memory and write its optional CSV and plot.
+
+Experiments never touch the store: trials run on the core (:mod:`ownctl.experiment`). This module
+reads the world file (TOML, DESIGN section 11) into a picklable world factory, checks the options,
+runs the trials and writes the ``--csv`` and ``--plot`` files.
+"""
+
+from __future__ import annotations
+
+import csv
+import math
+import tomllib
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from ownctl.errors import BadValue, OwnctlError, UnknownName
+
+if TYPE_CHECKING:
+    import numpy as np
+
+    from ownctl.experiment.runner import ExperimentResult
+    from ownctl.world.model import World
+
+TASK_CHOICES = ("collectAll", "trashAll", "both")
+DEFAULT_WORLD = "paper blocks world"
+
+
+class FileWorld:
+    """A world file as a world factory: ``factory(rng)`` builds the world (drawing its generator
+    part, if any, from ``rng``). Picklable, so trials can run in worker processes."""
+
+    def __init__(self, data: Mapping[str, Any], source: str) -> None:
+        self.data = dict(data)
+        self.source = source
+
+    def __call__(self, rng: np.random.Generator) -> World:
+        from ownctl.world.spec import world_from_dict
+
+        return world_from_dict(self.data, self.source, rng)
+
+
+def load_world(path: str | Path) -> FileWorld:
+    """The world factory of a TOML world file; OwnctlError if it is missing, unreadable or invalid."""
+    import numpy as np
+
+    p = Path(path)
+    if not p.is_file():
+        raise OwnctlError(f"world file {str(p)!r} does not exist")
+    try:
+        data = tomllib.loads(p.read_text(encoding="utf-8"))
+    except (OSError, UnicodeDecodeError) as exc:
+        raise OwnctlError(f"cannot read world file {str(p)!r}: {exc}") from None
+    except tomllib.TOMLDecodeError as exc:
+        raise OwnctlError(f"{p}: not valid TOML: {exc}") from None
+    factory = FileWorld(data, str(p))
+    world = factory(np.random.default_rng(0))  # validate once, here, with a readable error
+    if not world.norms:
+        raise BadValue(f"{p}: the world has no norms; experiments need its true norms")
+    if not world.objects:
+        raise BadValue(f"{p}: the world has no objects")
+    return factory
+
+
+def _world_factory(world: str | Path | None) -> tuple[Callable[[np.random.Generator], World], str]:
+    if world is None:
+        from ownctl.world.generator import paper_blocks_world
+
+        return paper_blocks_world, DEFAULT_WORLD
+    return load_world(world), str(world)
+
+
+def task_conditions(task: str) -> list[str] | None:
+    """The Table 3 conditions for ``--task`` (None = both)."""
+    if task not in TASK_CHOICES:
+        raise UnknownName("task", task, TASK_CHOICES)
+    return None if task == "both" else [task]
+
+
+def run(
+    experiment: str,
+    trials: int = 100,
+    seed: int = 0,
+    jobs: int = 1,
+    world: str | Path | None = None,
+    learner: str = "ours",
+    task: str = "both",
+    csv_path: str | Path | None = None,
+    plot_path: str | Path | None = None,
+    progress: Callable[[int, int], None] | None = None,
+) -> ExperimentResult:
+    """Run ``experiment`` (norms, ownership, task) and write the optional CSV and plot files."""
+    from ownctl.experiment.registry import get_experiment
+    from ownctl.experiment.runner import check_settings, run_experiment
+
+    exp = get_experiment(experiment)
+    check_settings(trials, jobs, learner)
+    conditions = task_conditions(task) if exp.name == "task" else None
+    if exp.name != "task" and task != "both":
+        raise BadValue(f"--task only applies to the task experiment, not {exp.name!r}")
+    for what, path in (("csv", csv_path), ("plot", plot_path)):
+        if path is not None and not Path(path).parent.exists():
+            raise OwnctlError(f"cannot write the {what} file {str(path)!r}: its folder does not exist")
+    factory, name = _world_factory(world)
+    result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name)
+    if csv_path is not None:
+        write_csv(result, csv_path)
+    if plot_path is not None:
+        from ownctl.app.experiment_plot import write_plot
+
+        write_plot(result, plot_path)
+    return result
+
+
+CSV_COLUMNS = ("experiment", "learner", "trials", "seed", "condition", "group", "row", "metric", "mean",
+               "ci95", "paper")
+
+
+def csv_rows(result: ExperimentResult) -> list[dict[str, Any]]:
+    """One row per (condition, group, row, metric) and per count; ``paper`` where published."""
+    rows: list[dict[str, Any]] = []
+    base = {"experiment": result.experiment.name, "learner": result.learner, "trials": result.trials,
+            "seed": result.seed}
+    for cond in result.conditions:
+        for group in cond.groups.values():
+            for row in (*group.rows, group.average):
+                for metric, cell in row.cells.items():
+                    paper = _paper_value(cond.paper, cond.headline, group.name, row.name, metric)
+                    rows.append({**base, "condition": cond.name, "group": group.name, "row": row.name,
+                                 "metric": metric, "mean": cell.mean, "ci95": cell.ci95, "paper": paper})
+        for name, cell in cond.counts.items():
+            rows.append({**base, "condition": cond.name, "group": "counts", "row": name, "metric": "mean",
+                         "mean": cell.mean, "ci95": cell.ci95, "paper": cond.paper.get(name, "")})
+    return rows
+
+
+def _paper_value(paper: Mapping[str, Any], headline: str, group: str, row: str, metric: str) -> Any:
+    if row != "average":
+        return ""
+    if group == headline:
+        return paper.get(metric, "")
+    if group == "ownership" and isinstance(paper.get("ownership"), Mapping):
+        return paper["ownership"].get(metric, "")
+    return ""
+
+
+def write_csv(result: ExperimentResult, path: str | Path) -> None:
+    """Write :func:`csv_rows` to ``path``."""
+    try:
+        with open(path, "w", newline="", encoding="utf-8") as fh:
+            writer = csv.DictWriter(fh, fieldnames=CSV_COLUMNS)
+            writer.writeheader()
+            for row in csv_rows(result):
+                writer.writerow({k: _fmt(v) for k, v in row.items()})
+    except OSError as exc:
+        raise OwnctlError(f"cannot write the csv file {str(path)!r}: {exc.strerror}") from None
+
+
+def _fmt(value: Any) -> Any:
+    if isinstance(value, float):
+        return "" if math.isnan(value) else f"{value:.6g}"
+    return value

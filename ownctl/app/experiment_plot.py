@@ -1,0 +1,78 @@
+"""The ``--plot`` figure of an experiment: each metric against the conditions, ours with 95% error
+bars, the paper's published values (and other published systems) as markers. Matplotlib, Agg backend.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from ownctl.errors import OwnctlError
+
+if TYPE_CHECKING:
+    from ownctl.experiment.runner import ExperimentResult
+    from ownctl.experiment.summary import Cell, ConditionSummary
+
+Panel = tuple[str, Callable[["ConditionSummary"], "Cell | None"], Callable[[Mapping[str, Any]], Any]]
+
+
+def _panels(result: ExperimentResult) -> list[Panel]:
+    head = result.experiment.headline
+    panels: list[Panel] = [
+        (f"accuracy ({head})", lambda c: c.accuracy, lambda p: p.get("accuracy")),
+        (f"F1 ({head})", lambda c: c.f1, lambda p: p.get("f1")),
+    ]
+    if result.experiment.name == "task":
+        panels.insert(0, ("mistakes", lambda c: c.counts.get("mistakes"), lambda p: p.get("mistakes")))
+        own = lambda p, m: (p.get("ownership") or {}).get(m)  # noqa: E731
+        panels += [
+            ("ownership accuracy", lambda c: c.groups["ownership"].average["accuracy"],
+             lambda p: own(p, "accuracy")),
+            ("ownership F1", lambda c: c.groups["ownership"].average["f1"], lambda p: own(p, "f1")),
+        ]
+    return panels
+
+
+def write_plot(result: ExperimentResult, path: str | Path) -> None:
+    """Write the figure to ``path`` (PNG)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    panels = _panels(result)
+    names = [c.name for c in result.conditions]
+    fig, axes = plt.subplots(1, len(panels), figsize=(3.2 * len(panels) + 1, 4.2), squeeze=False)
+    xs = list(range(len(names)))
+    for ax, (label, ours, paper) in zip(axes[0], panels, strict=True):
+        cells = [ours(c) for c in result.conditions]
+        means = [c.mean if c is not None else float("nan") for c in cells]
+        errs = [c.ci95 if c is not None else 0.0 for c in cells]
+        ax.bar(xs, means, yerr=errs, capsize=4, color="#4c72b0", alpha=0.85, label=f"ours ({result.learner})")
+        published = [paper(c.paper) for c in result.conditions]
+        if any(v is not None for v in published):
+            ax.scatter([x for x, v in zip(xs, published, strict=True) if v is not None],
+                       [v for v in published if v is not None], marker="D", color="#c44e52", zorder=3,
+                       label="paper")
+        for k, (ref, marker) in enumerate(zip(sorted({r for c in result.conditions for r in c.references}),
+                                              "^sv", strict=False)):
+            vals = [paper(c.references.get(ref, {})) for c in result.conditions]
+            ax.scatter([x for x, v in zip(xs, vals, strict=True) if v is not None],
+                       [v for v in vals if v is not None], marker=marker, color=f"C{k + 2}", zorder=3,
+                       label=ref)
+        ax.set_title(label)
+        ax.set_xticks(xs)
+        ax.set_xticklabels(names, rotation=35, ha="right", fontsize=8)
+        if label != "mistakes":
+            ax.set_ylim(0, 1.05)
+        ax.grid(axis="y", alpha=0.3)
+    axes[0][0].legend(fontsize=8, loc="lower left")
+    fig.suptitle(f"{result.experiment.title} ({result.trials} trials, seed {result.seed}, 95% CI)")
+    fig.tight_layout()
+    try:
+        fig.savefig(path, dpi=110)
+    except OSError as exc:
+        raise OwnctlError(f"cannot write the plot file {str(path)!r}: {exc.strerror}") from None
+    finally:
+        plt.close(fig)

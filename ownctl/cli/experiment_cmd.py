@@ -1,0 +1,182 @@
+"""``ownctl experiment norms|ownership|task``: the paper's Tables 1-3, run in memory, beside the paper.
+
+Parses the options, calls :func:`ownctl.app.experiment.run` once (with a rich progress bar on
+stderr unless ``--quiet``), and renders the result as rich tables or one JSON document. Nothing
+heavy is imported until a command runs. Register with ``app.add_typer(experiment_app,
+name="experiment")``.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import TYPE_CHECKING, Annotated, Any
+
+import typer
+
+from ownctl.errors import OwnctlError
+
+if TYPE_CHECKING:
+    from ownctl.experiment.runner import ExperimentResult
+    from ownctl.experiment.summary import Cell
+
+experiment_app = typer.Typer(
+    help="Run the paper's experiments (Tables 1-3) in memory and compare with its published values.",
+    no_args_is_help=True,
+)
+
+TrialsOpt = Annotated[int, typer.Option("--trials", "-n", help="Trials per condition.")]
+SeedOpt = Annotated[int, typer.Option("--seed", help="Seed; trial t of condition c uses [seed, c, t].")]
+JobsOpt = Annotated[int, typer.Option("--jobs", "-j", help="Worker processes (results do not depend on it).")]
+WorldOpt = Annotated[
+    str | None,
+    typer.Option("--world", metavar="FILE", help="A TOML world file with true norms (default: the paper's "
+                 "blocks world, scenarios/paper-blocks.toml)."),
+]
+LearnerOpt = Annotated[str, typer.Option("--learner", help="Rule learner: ours or paper.")]
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print exactly one JSON document on stdout.")]
+CsvOpt = Annotated[str | None, typer.Option("--csv", metavar="FILE", help="Also write every figure as CSV.")]
+PlotOpt = Annotated[str | None, typer.Option("--plot", metavar="FILE.png", help="Also plot the metrics.")]
+QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar and no tables.")]
+
+
+def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
+         json_out: bool, csv: str | None, plot: str | None, quiet: bool) -> None:
+    from ownctl.app import experiment as app
+
+    try:
+        if quiet:
+            result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot)
+        else:
+            from rich.console import Console
+            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+            columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                       TimeElapsedColumn())
+            with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
+                bar_id = bar.add_task(f"experiment {experiment}", total=None)
+
+                def progress(done: int, total: int) -> None:
+                    bar.update(bar_id, completed=done, total=total)
+
+                result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, progress)
+    except OwnctlError as exc:
+        message = " ".join(exc.message.split())
+        if json_out:
+            typer.echo(json.dumps({"error": message, "valid": exc.valid}, ensure_ascii=False))
+        typer.echo(f"ownctl: {message}", err=True)
+        raise typer.Exit(exc.exit_code) from None
+    if json_out:
+        typer.echo(json.dumps(result.as_dict(), ensure_ascii=False))
+    elif not quiet:
+        render(result)
+
+
+@experiment_app.command("norms")
+def norms(
+    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, world: WorldOpt = None,
+    learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None,
+    quiet: QuietOpt = False,
+) -> None:
+    """Table 1: learn norms from permissions on 100/50/25% of the objects, exact or noisy owners."""
+    _run("norms", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet)
+
+
+@experiment_app.command("ownership")
+def ownership(
+    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, world: WorldOpt = None,
+    learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None,
+    quiet: QuietOpt = False,
+) -> None:
+    """Table 2: predict ownership of held-out objects from claims and permissions on half of them."""
+    _run("ownership", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet)
+
+
+@experiment_app.command("task")
+def task(
+    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, world: WorldOpt = None,
+    learner: LearnerOpt = "ours",
+    which: Annotated[str, typer.Option("--task", help="collectAll, trashAll or both.")] = "both",
+    json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None, quiet: QuietOpt = False,
+) -> None:
+    """Table 3: collectAll / trashAll with a correcting instructor, counting mistakes."""
+    _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet)
+
+
+# -- rendering ------------------------------------------------------------------------------------
+def _pm(cell: Cell | None, digits: int = 3) -> str:
+    """``0.975±.012``: the mean and the 95% half-width (its leading zero dropped, to fit 80 columns)."""
+    if cell is None:
+        return ""
+    ci = f"{cell.ci95:.{digits}f}"
+    return f"{cell.mean:.{digits}f}±{ci[1:] if ci.startswith('0.') else ci}"
+
+
+def _num(value: Any, digits: int = 3) -> str:
+    return f"{value:.{digits}f}" if isinstance(value, int | float) else ""
+
+
+def _headline(result: ExperimentResult) -> tuple[list[str], list[list[str]]]:
+    """Columns and rows of the main table: for each condition a row of ours, then the paper's."""
+    task = result.experiment.name == "task"
+    second = {"task": "ownership", "ownership": "all"}.get(result.experiment.name)
+    columns = ["condition", "source"] + (["mistakes"] if task else []) + ["accuracy", "F1"]
+    if second:
+        columns += [f"{second[:5]} acc", f"{second[:5]} F1"]
+    refs = sorted({r for c in result.conditions for r in c.references})
+    rows = []
+    for c in result.conditions:
+        ours = [c.name, "ours"] + ([_pm(c.counts.get("mistakes"), 2)] if task else [])
+        ours += [_pm(c.accuracy), _pm(c.f1)]
+        if second:
+            avg = c.groups[second].average
+            ours += [_pm(avg["accuracy"]), _pm(avg["f1"])]
+        rows.append(ours)
+        sources = [("paper", c.paper)] + [(r, c.references[r]) for r in refs if r in c.references]
+        for label, values in sources:
+            if not values:
+                continue
+            row = ["", label] + ([_num(values.get("mistakes"), 2)] if task else [])
+            row += [_num(values.get("accuracy")), _num(values.get("f1"))]
+            if second:
+                nested = values.get(second, {}) if task else {}
+                row += [_num(nested.get("accuracy")), _num(nested.get("f1"))]
+            rows.append(row)
+    return columns, rows
+
+
+def render(result: ExperimentResult) -> None:
+    """Print the headline table, the per-row table, the metric definitions and the runtime."""
+    from rich import box
+    from rich.console import Console
+    from rich.table import Table
+
+    console = Console()
+    exp = result.experiment
+    columns, rows = _headline(result)
+    head = Table(title=f"{exp.title}: ours ({result.learner} learner, mean±95% CI) and the paper",
+                 caption=f"accuracy, F1 = {exp.headline}: {exp.groups.get(exp.headline, '')}",
+                 box=box.SIMPLE_HEAD, collapse_padding=True, pad_edge=False)
+    for col in columns:
+        head.add_column(col, justify="left" if col in ("condition", "source") else "right")
+    for row in rows:
+        head.add_row(*row, end_section=row[1] != "ours" and row is not rows[-1]
+                     and (rows[rows.index(row) + 1][0] != ""))
+    console.print(head)
+    detail = Table(title=f"per {exp.rows}, each group, ours", box=box.SIMPLE_HEAD, collapse_padding=True,
+                   pad_edge=False)
+    for col in ("condition", "group", exp.rows, "accuracy", "precision", "recall", "F1"):
+        detail.add_column(col, justify="left" if col in ("condition", "group", exp.rows) else "right")
+    for c in result.conditions:
+        first = True
+        for group in c.groups.values():
+            for r in (*group.rows, group.average):
+                detail.add_row(c.name if first else "", group.name, r.name, _pm(r["accuracy"]),
+                               _pm(r["precision"]), _pm(r["recall"]), _pm(r["f1"]),
+                               end_section=r is group.average)
+                first = False
+    console.print(detail)
+    for note in exp.metrics:
+        console.print(f"[dim]* {note}[/dim]")
+    n = len(result.conditions)
+    console.print(f"{result.trials} trials x {n} condition{'s' if n != 1 else ''} on {result.world} "
+                  f"(seed {result.seed}, jobs {result.jobs}) in {result.seconds:.2f} s")

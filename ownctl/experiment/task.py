@@ -1,0 +1,267 @@
+"""The task loop shared by the in-memory experiments and the MuJoCo runner (reference 7.5, 8.1).
+
+A task (``collectAll``, ``trashAll``) visits every object in ascending order. An object already in
+the task's target area is done (checked when it is dequeued, so earlier moves count). Otherwise
+the :class:`~ownctl.experiment.mind.Mind` decides the action's object-targeted steps (``find``,
+``pickUp``, then ``trash`` or ``collect``): a step's permission decides it when there is one, else
+its rules on the posterior at the obedience threshold. The :class:`Instructor` may then teach the
+Mind and override the decision (stop an allowed action, force a refused one); the
+:class:`Executor` performs what is finally allowed and reports where objects are afterwards.
+
+Ground truth (the world's true norms and owners) is read only by the oracle instructor and by the
+report's metrics, never by the Mind.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Protocol
+
+import numpy as np
+
+from ownctl.errors import BadValue, UnknownName
+from ownctl.experiment.metrics import Scores, ownership_scores, rule_scores
+from ownctl.experiment.mind import Mind
+from ownctl.experiment.truth import TrueNorms
+from ownctl.logic.prob import p_forbidden
+from ownctl.logic.vocab import object_steps
+from ownctl.world.model import Area, Position, World
+
+MOVE_TOLERANCE = 0.01  # metres: a smaller displacement is not a move (DESIGN 11, "left OBJ")
+
+
+@dataclass(frozen=True)
+class Task:
+    """A whole-workspace task: apply ``action`` to every object not yet in ``area``."""
+
+    name: str
+    action: str
+    area: str
+
+
+TASKS: dict[str, Task] = {
+    "collectAll": Task("collectAll", "collect", "home"),
+    "trashAll": Task("trashAll", "trash", "trash"),
+}
+
+
+def get_task(name: str) -> Task:
+    """The task called ``name``; UnknownName listing the tasks otherwise."""
+    try:
+        return TASKS[name]
+    except KeyError:
+        raise UnknownName("task", name, TASKS) from None
+
+
+@dataclass(frozen=True)
+class Execution:
+    """What an executor reports for one action: success, or the error that stopped it."""
+
+    ok: bool
+    error: str | None = None
+
+
+class Executor(Protocol):
+    """Performs object actions (``trash``, ``collect``) and reports object positions."""
+
+    def perform(self, action: str, name: str) -> Execution:
+        """Do ``action`` on object ``name``."""
+        ...
+
+    def position(self, name: str) -> Position | None:
+        """Where object ``name`` is now (None if unknown)."""
+        ...
+
+
+@dataclass(frozen=True)
+class Attempt:
+    """The Mind's decision on one object, as the instructor sees it before the robot acts."""
+
+    task: Task
+    obj: int
+    name: str
+    steps: tuple[str, ...]
+    allowed: bool
+    forbidding: tuple[str, ...]  # the steps the Mind believes forbidden
+
+
+@dataclass(frozen=True)
+class Verdict:
+    """The instructor's reaction: ``override`` is ``"skip"``, ``"force"`` or None (let it be)."""
+
+    override: str | None = None
+
+
+class Instructor(Protocol):
+    """Reacts to each attempt: may teach ``mind`` (permissions, claims) and override the decision."""
+
+    def react(self, attempt: Attempt, mind: Mind) -> Verdict:
+        """Teach and judge one attempt."""
+        ...
+
+
+class SilentInstructor:
+    """No instructor: the robot acts on its own decisions and learns nothing."""
+
+    def react(self, attempt: Attempt, mind: Mind) -> Verdict:
+        """Never teaches, never overrides."""
+        return Verdict()
+
+
+@dataclass(frozen=True)
+class StepRecord:
+    """What happened to one object: decision, truth, outcome (``delivered``, ``skipped``, ``done``)."""
+
+    obj: int
+    name: str
+    outcome: str
+    allowed: bool = True
+    violated: bool = False
+    mistake: bool = False
+    forced: bool = False
+    reason: str = ""
+    forbidding: tuple[str, ...] = ()
+
+
+@dataclass(frozen=True)
+class TaskReport:
+    """The outcome of a task run and the learned beliefs' quality against the ground truth.
+
+    ``rules[action]`` scores the learned rules of every action with a true norm on the objects'
+    state after the task; ``relevant`` are those among the task's steps (the paper's average);
+    ``ownership[agent]`` scores the posterior on all objects (strict metric).
+    """
+
+    task: str
+    records: tuple[StepRecord, ...]
+    rules: dict[str, Scores] = field(default_factory=dict)
+    relevant: tuple[str, ...] = ()
+    ownership: dict[str, Scores] = field(default_factory=dict)
+
+    def _names(self, pred: Callable[[StepRecord], bool]) -> list[str]:
+        return [r.name for r in self.records if pred(r)]
+
+    @property
+    def mistakes(self) -> int:
+        """Wrong decisions: allowed though the true norms forbid, or refused though they allow."""
+        return sum(r.mistake for r in self.records)
+
+    @property
+    def delivered(self) -> list[str]:
+        """Objects the robot acted on successfully."""
+        return self._names(lambda r: r.outcome == "delivered")
+
+    @property
+    def skipped(self) -> list[tuple[str, str]]:
+        """(object, reason) for every object left where it was."""
+        return [(r.name, r.reason) for r in self.records if r.outcome == "skipped"]
+
+    @property
+    def violations(self) -> list[str]:
+        """Objects acted on although the true norms forbid it."""
+        return self._names(lambda r: r.outcome == "delivered" and r.violated)
+
+    @property
+    def forced(self) -> list[str]:
+        """Objects the instructor made the robot act on after it refused."""
+        return self._names(lambda r: r.forced)
+
+    def rule_average(self, actions: Sequence[str] | None = None) -> Scores:
+        """Rule scores averaged over ``actions`` (default: the relevant ones)."""
+        return _mean([self.rules[a] for a in (self.relevant if actions is None else actions)])
+
+    def ownership_average(self) -> Scores:
+        """Ownership scores averaged over agents."""
+        return _mean(list(self.ownership.values()))
+
+
+def _mean(scores: Sequence[Scores]) -> Scores:
+    if not scores:
+        return Scores(1.0, 1.0, 1.0, 1.0)
+    return Scores(*np.mean([s.as_array() for s in scores], axis=0).tolist())
+
+
+def area_named(areas: Sequence[Area], name: str) -> Area:
+    """The area called ``name``; BadValue listing the areas otherwise (a task needs its area)."""
+    for area in areas:
+        if area.name == name:
+            return area
+    raise BadValue(f"the task needs an area {name!r}; the world's areas: "
+                   f"{', '.join(a.name for a in areas) or '(none)'}", [a.name for a in areas])
+
+
+def inside(area: Area, position: Position | None) -> bool:
+    """Whether ``position`` lies in ``area`` (no position: nowhere)."""
+    return position is not None and bool(area.contains(np.array(position[:2]))[0])
+
+
+def run_task(
+    mind: Mind,
+    world: World,
+    task: Task | str,
+    executor: Executor,
+    instructor: Instructor,
+    on_step: Callable[[StepRecord], None] | None = None,
+) -> TaskReport:
+    """Run ``task`` over every object of ``mind`` (whose objects are the world's, in order)."""
+    task = get_task(task) if isinstance(task, str) else task
+    target = area_named(mind.areas, task.area)
+    truth = TrueNorms(world)
+    steps = object_steps(task.action)
+    records: list[StepRecord] = []
+    for i in range(len(mind.objects)):
+        name = mind.objects[i].name
+        if inside(target, mind.objects[i].position):
+            record = StepRecord(i, name, "done", reason=f"already in {task.area}")
+        else:
+            record = _attempt(mind, truth, task, steps, i, executor, instructor)
+            _sync(mind, executor)
+        records.append(record)
+        if on_step is not None:
+            on_step(record)
+    return _report(mind, truth, task, steps, records)
+
+
+def _attempt(mind: Mind, truth: TrueNorms, task: Task, steps: tuple[str, ...], i: int,
+             executor: Executor, instructor: Instructor) -> StepRecord:
+    name = mind.objects[i].name
+    forbidden, bad = mind.decide(task.action, i, steps)
+    allowed = not forbidden
+    violated = truth.violated(i, mind.objects[i], steps)
+    mistake = allowed == violated
+    verdict = instructor.react(Attempt(task, i, name, steps, allowed, tuple(bad)), mind)
+    act, forced = allowed, False
+    reason = "" if allowed else "refused: " + ", ".join(f"{s} forbidden" for s in bad)
+    if verdict.override == "skip" and allowed:
+        act, reason = False, "stopped by the instructor"
+    elif verdict.override == "force" and not allowed:
+        act, forced, reason = True, True, ""
+    outcome = "skipped"
+    if act:
+        done = executor.perform(task.action, name)
+        outcome = "delivered" if done.ok else "skipped"
+        reason = "" if done.ok else f"failed: {done.error or 'unknown error'}"
+    return StepRecord(i, name, outcome, allowed, violated, mistake, forced, reason, tuple(bad))
+
+
+def _sync(mind: Mind, executor: Executor) -> None:
+    """Let the Mind perceive every object that moved by more than MOVE_TOLERANCE."""
+    for i, obj in enumerate(list(mind.objects)):
+        new = executor.position(obj.name)
+        old = obj.position
+        if new is None or (old is not None and np.linalg.norm(np.subtract(new, old)) < MOVE_TOLERANCE):
+            continue
+        mind.move(i, tuple(float(v) for v in new))  # type: ignore[arg-type]
+
+
+def _report(mind: Mind, truth: TrueNorms, task: Task, steps: tuple[str, ...],
+            records: list[StepRecord]) -> TaskReport:
+    frame = truth.frame(mind.objects)
+    rules = {a: rule_scores(p_forbidden(r, frame), p_forbidden(mind.rules[a], frame))
+             for a, r in truth.rules.items()}
+    post = mind.posterior()
+    owners = truth.ownership
+    ownership = {a: ownership_scores(owners[:, j], post[:, j]) for j, a in enumerate(mind.agents)}
+    relevant = tuple(s for s in steps if s in truth.rules)
+    return TaskReport(task.name, tuple(records), rules, relevant, ownership)
