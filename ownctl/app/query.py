@@ -23,7 +23,7 @@ def owners(ctx: AppContext, obj: str) -> dict[str, Any]:
     with ctx.read() as tx:
         row = tx.object(obj)
         names = {a.id: a.name for a in tx.agents()}
-        out = []
+        out: list[dict[str, Any]] = []
         for b in tx.ownership(object_id=row.id):
             p, source = decision_belief(b)
             out.append(
