@@ -10,6 +10,8 @@ from __future__ import annotations
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+import numpy as np
+
 from sim import baxter
 from sim import scene_config as cfg
 
@@ -31,6 +33,30 @@ def block_body(index: int) -> str:
 def weld_name(side: str, index: int) -> str:
     """Name of the (initially inactive) weld that holds block ``index`` in ``side``'s hand."""
     return f"grasp_{side}_{index}"
+
+
+def _camera(
+    name: str, pos: tuple[float, float, float], target: tuple[float, float, float], fovy: float
+) -> str:
+    """A camera at ``pos`` looking at ``target`` with the world's z axis up in the image."""
+    forward = np.subtract(target, pos) / np.linalg.norm(np.subtract(target, pos))
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    axes = " ".join(f"{v:.4f}" for v in (*right, *up))
+    return f'<camera name="{name}" pos="{pos[0]} {pos[1]} {pos[2]}" xyaxes="{axes}" fovy="{fovy}"/>'
+
+
+def _cameras() -> str:
+    """Front (facing the robot), corner and top views of the table strip."""
+    cx, top = cfg.MAP_CENTER_X, cfg.TABLE_TOP
+    return "\n".join(
+        [
+            _camera("front", (cx + 0.75, 0.0, top + 0.6), (cx - 0.05, 0.0, top + 0.08), 34),
+            _camera("corner", (cx + 0.6, -0.65, top + 0.55), (cx - 0.05, 0.0, top + 0.08), 36),
+            f'<camera name="top" pos="{cx} 0 {top + 0.6}" xyaxes="0 -1 0 1 0 0" fovy="40"/>',
+        ]
+    )
 
 
 def _block(spec: BlockSpec) -> str:
@@ -115,9 +141,7 @@ def scene_xml(
     <light name="sun" pos="0.6 0 3" dir="0 0 -1" diffuse="0.45 0.45 0.45" specular="0.1 0.1 0.1"
            castshadow="false"/>
     <geom name="floor" type="plane" size="3 3 0.05" material="floor"/>
-    <camera name="front" pos="1.25 0 1.42" xyaxes="0 1 0 -0.676 0 0.737" fovy="42"/>
-    <camera name="corner" pos="1.3 -0.75 1.45" xyaxes="0.6 0.8 0 -0.45 0.34 0.826" fovy="50"/>
-    <camera name="top" pos="{cfg.MAP_CENTER_X} 0 {cfg.TABLE_TOP + 0.6}" xyaxes="0 -1 0 1 0 0" fovy="40"/>
+    {_cameras()}
     {baxter.robot_xml()}
     <body name="table" pos="{tx} {ty} 0">
       <geom name="table_top" type="box" size="{hx} {hy} 0.02" pos="0 0 {cfg.TABLE_TOP - 0.02}"
