@@ -224,7 +224,10 @@ def open_store(location: Location, create: bool = False) -> Store:
             raise StoreError(
                 f"no ownctl store at {location.display}; create it with: ownctl --db {location.url} init"
             )
-        location.path.parent.mkdir(parents=True, exist_ok=True)  # type: ignore[union-attr]
+        try:
+            location.path.parent.mkdir(parents=True, exist_ok=True)  # type: ignore[union-attr]
+        except OSError as exc:
+            raise StoreError(f"cannot create store {location.display}: {exc.strerror or exc}") from None
     engine = _make_engine(location)
     try:
         with engine.connect() as conn:

@@ -144,3 +144,10 @@ def test_beliefs_are_written_in_bulk_and_cascade(tmp_path: Path) -> None:
         tx.clear_beliefs(["prior"])
         assert all(b.prior_p is None for b in tx.ownership())
     store.close()
+
+
+def test_uncreatable_location_is_a_user_error(tmp_path: Path) -> None:
+    blocker = tmp_path / "file"
+    blocker.write_text("x")
+    with pytest.raises(StoreError, match="cannot create store"):
+        open_store(locate(str(blocker / "sub" / "s.db")), create=True)
