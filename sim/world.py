@@ -15,6 +15,7 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from pathlib import Path
 
+import mujoco
 import numpy as np
 
 from ownctl.errors import BadValue, DuplicateName, UnknownName
@@ -31,8 +32,8 @@ from sim.workspace import SimArea, SimBlock, WorkspaceMap, with_default_areas
 __all__ = ["PhysicsWorld", "SimArea", "SimBlock", "StepOutcome", "WorkspaceMap"]
 
 ARMS = ("auto", "left", "right")
-SETTLE = 0.3  # seconds the world runs after an action before the result is checked
 GRASPS = ("weld", "friction")
+SETTLE = 0.3  # seconds the world runs after an action before the result is checked
 
 
 @dataclass(frozen=True)
@@ -48,8 +49,6 @@ class StepOutcome:
 
 def _quiet_mujoco_log() -> None:
     """Stop MuJoCo from writing MUJOCO_LOG.TXT into the working directory or printing warnings."""
-    import mujoco
-
     config = mujoco.MjLogConfig.get()
     config.logto_file = False
     config.logto_console = False
@@ -63,6 +62,9 @@ class PhysicsWorld:
     close, then a weld holds the block while both fingers touch it) or "friction". ``render`` is None
     (headless, no frames), a ``.png`` path (nothing captured while acting) or a ``.mp4``/``.gif`` path
     (frames captured while acting; write them with :meth:`finish_video`).
+
+    Blocks start where the workspace map puts them unless they had to be nudged apart (``nudged``
+    names them) or had no position (a free spot drawn from ``seed``); :meth:`positions` reports all.
     """
 
     def __init__(
@@ -76,8 +78,6 @@ class PhysicsWorld:
         render: str | None = None,
         workspace_map: WorkspaceMap | None = None,
     ) -> None:
-        import mujoco
-
         if arm not in ARMS:
             raise BadValue(f"unknown arm {arm!r}; known arms: {', '.join(ARMS)}", ARMS)
         if grasp not in GRASPS:
@@ -131,6 +131,8 @@ class PhysicsWorld:
 
     def in_area(self, name: str, area: str) -> bool:
         """True if block ``name``'s (x, y) lies inside area ``area`` (workspace box)."""
+        if area not in self.areas:
+            raise UnknownName("area", area, self.areas)
         return self.areas[area].contains(self.position(name))
 
     # ----------------------------------------------------------------- actions
@@ -143,9 +145,18 @@ class PhysicsWorld:
         return self._act("collect", name, self._collect)
 
     def go_home(self) -> None:
-        """Move both hands up and back to their park poses beside the table."""
-        for side in baxter.SIDES:
-            self.skills.park(side)
+        """Move both hands up and back to their park poses beside the table.
+
+        Raises :class:`PhysicsUnstable` (after restoring the state from before the call) if the
+        physics breaks on the way.
+        """
+        snapshot = self.robot.snapshot()
+        try:
+            for side in baxter.SIDES:
+                self.skills.park(side)
+        except PhysicsUnstable:
+            self.robot.restore(snapshot)
+            raise
 
     def _side(self, block: int) -> str:
         return self.skills.nearer_arm(block) if self.arm == "auto" else self.arm
