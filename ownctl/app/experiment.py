@@ -62,12 +62,30 @@ def load_world(path: str | Path) -> FileWorld:
     return factory
 
 
-def _world_factory(world: str | Path | None) -> tuple[Callable[[np.random.Generator], World], str]:
+def _world_factory(world: str | Path | None) -> tuple[Callable[[np.random.Generator], World], str, bool]:
+    """The factory, a name for reports, and whether the paper's published values apply to it."""
     if world is None:
         from ownctl.world.generator import paper_blocks_world
 
-        return paper_blocks_world, DEFAULT_WORLD
-    return load_world(world), str(world)
+        return paper_blocks_world, DEFAULT_WORLD, True
+    factory = load_world(world)
+    return factory, str(world), is_paper_world(factory)
+
+
+def is_paper_world(factory: FileWorld) -> bool:
+    """Whether a world file describes the paper's setting: its generator alone, its agents and norms."""
+    from ownctl.logic.rules import parse_norm
+    from ownctl.world import generator as gen
+
+    data = factory.data
+    table = data.get("generator")
+    if not isinstance(table, Mapping) or table.get("kind", "paper-blocks") != "paper-blocks":
+        return False
+    if table.get("objects", 20) != 20 or data.get("objects"):
+        return False
+    agents = tuple(data.get("agents", gen.PAPER_AGENTS))
+    norms = {parse_norm(n).text() for n in data.get("norms", gen.PAPER_NORMS)}
+    return agents == gen.PAPER_AGENTS and norms == {parse_norm(n).text() for n in gen.PAPER_NORMS}
 
 
 def task_conditions(task: str) -> list[str] | None:
@@ -101,8 +119,9 @@ def run(
     for what, path in (("csv", csv_path), ("plot", plot_path)):
         if path is not None and not Path(path).parent.exists():
             raise OwnctlError(f"cannot write the {what} file {str(path)!r}: its folder does not exist")
-    factory, name = _world_factory(world)
-    result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name)
+    factory, name, comparable = _world_factory(world)
+    result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name,
+                            comparable)
     if csv_path is not None:
         write_csv(result, csv_path)
     if plot_path is not None:

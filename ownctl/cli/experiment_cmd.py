@@ -43,32 +43,52 @@ def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, 
          json_out: bool, csv: str | None, plot: str | None, quiet: bool) -> None:
     from ownctl.app import experiment as app
 
+    bar = None if quiet else _progress_bar(experiment)
     try:
-        if quiet:
-            result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot)
-        else:
-            from rich.console import Console
-            from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-            columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
-                       TimeElapsedColumn())
-            with Progress(*columns, console=Console(stderr=True), transient=True) as bar:
-                bar_id = bar.add_task(f"experiment {experiment}", total=None)
-
-                def progress(done: int, total: int) -> None:
-                    bar.update(bar_id, completed=done, total=total)
-
-                result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, progress)
+        result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, bar)
     except OwnctlError as exc:
         message = " ".join(exc.message.split())
         if json_out:
             typer.echo(json.dumps({"error": message, "valid": exc.valid}, ensure_ascii=False))
         typer.echo(f"ownctl: {message}", err=True)
         raise typer.Exit(exc.exit_code) from None
+    finally:
+        if bar is not None:
+            bar.stop()
     if json_out:
         typer.echo(json.dumps(result.as_dict(), ensure_ascii=False))
     elif not quiet:
         render(result)
+
+
+class _Bar:
+    """A rich progress bar on stderr, shown from the first trial on (so option errors print alone),
+    and only on a terminal."""
+
+    def __init__(self, progress: Any, description: str) -> None:
+        self.progress, self.description = progress, description
+        self.task: Any = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.task is None:
+            self.progress.start()
+            self.task = self.progress.add_task(self.description, total=total)
+        self.progress.update(self.task, completed=done, total=total)
+
+    def stop(self) -> None:
+        if self.task is not None:
+            self.progress.stop()
+
+
+def _progress_bar(experiment: str) -> _Bar | None:
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    console = Console(stderr=True)
+    if not console.is_terminal:
+        return None
+    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn())
+    return _Bar(Progress(*columns, console=console, transient=True), f"experiment {experiment}")
 
 
 @experiment_app.command("norms")
@@ -153,7 +173,9 @@ def render(result: ExperimentResult) -> None:
     console = Console()
     exp = result.experiment
     columns, rows = _headline(result)
-    head = Table(title=f"{exp.title}: ours ({result.learner} learner, mean±95% CI) and the paper",
+    comparable = result.extra.get("paper_comparable", True)
+    also = " and the paper" if comparable else " (the paper's values are for its blocks world only)"
+    head = Table(title=f"{exp.title}: ours ({result.learner} learner, mean±95% CI){also}",
                  caption=f"accuracy, F1 = {exp.headline}: {exp.groups.get(exp.headline, '')}",
                  box=box.SIMPLE_HEAD, collapse_padding=True, pad_edge=False)
     for col in columns:

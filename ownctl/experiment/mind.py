@@ -177,7 +177,8 @@ class Mind:
             return None
         action = norm.rule.action
         ev, _ = self.evidence(action)
-        out = learn_norm(norm, self.rules[action], ev, self.vocab, self.settings.learn)
+        out = learn_norm(norm, self.rules[action], ev, self.vocab, self.settings.learn,
+                         self.allows[action])
         if norm.sign == "allow":
             self.allows[action].append(norm.rule)
         else:

@@ -135,12 +135,14 @@ def run_experiment(
     progress: Progress | None = None,
     conditions: Sequence[str] | None = None,
     world: str = "paper blocks world",
+    compare: bool = True,
 ) -> ExperimentResult:
     """Run ``trials`` trials of every (selected) condition of experiment ``name``.
 
     ``world_factory(rng)`` draws a world with its ground truth; with ``jobs > 1`` it must be
     picklable (a module-level function or a picklable object). ``progress(done, total)`` is called
-    as trials finish.
+    as trials finish. ``compare``: attach the paper's published values (only meaningful on the
+    paper's blocks world with its norms).
     """
     exp = get_experiment(name)
     check_settings(trials, jobs, learner)
@@ -170,11 +172,11 @@ def run_experiment(
         cond = exp.conditions[c]
         results = [done[(c, t)][0] for t in range(trials)]
         secs = sum(done[(c, t)][1] for t in range(trials))
-        refs = {k: v[cond.name] for k, v in exp.references.items() if cond.name in v}
-        summaries.append(summarise(cond.name, c, results, exp.headline, exp.paper.get(cond.name, {}),
-                                   refs, secs))
+        refs = {k: v[cond.name] for k, v in exp.references.items() if cond.name in v and compare}
+        paper = exp.paper.get(cond.name, {}) if compare else {}
+        summaries.append(summarise(cond.name, c, results, exp.headline, paper, refs, secs))
     return ExperimentResult(exp, trials, seed, jobs, learner, tuple(summaries),
-                            time.perf_counter() - start, world)
+                            time.perf_counter() - start, world, {"paper_comparable": compare})
 
 
 def _iterate_serial(name: str, world_factory: WorldFactory, learner: str, seed: int,

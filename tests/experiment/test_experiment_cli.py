@@ -1,0 +1,127 @@
+"""``ownctl experiment ...`` through a local Typer app, and the app layer's world files."""
+
+from __future__ import annotations
+
+import csv
+import json
+import os
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import typer
+from typer.testing import CliRunner
+
+from ownctl.app import experiment as app_experiment
+from ownctl.cli.experiment_cmd import experiment_app
+from ownctl.errors import OwnctlError
+
+ROOT = Path(__file__).resolve().parents[2]
+DESK = ROOT / "scenarios" / "desk-norms.toml"
+PAPER = ROOT / "scenarios" / "paper-blocks.toml"
+
+cli = typer.Typer()
+cli.add_typer(experiment_app, name="experiment")
+
+
+def run(*args: str):
+    return CliRunner().invoke(cli, ["experiment", *args])  # click 8.2+: stdout and stderr apart
+
+
+def test_json_document_has_the_design_shape() -> None:
+    res = run("ownership", "--trials", "2", "--json", "--seed", "3")
+    assert res.exit_code == 0, res.stderr
+    doc = json.loads(res.stdout)
+    assert {"experiment", "trials", "seed", "conditions", "seconds"} <= set(doc)
+    assert doc["experiment"] == "ownership" and doc["trials"] == 2 and doc["seed"] == 3
+    assert [c["name"] for c in doc["conditions"]] == ["(i) no inference", "(ii) rules learned",
+                                                      "(iii) rules given"]
+    for c in doc["conditions"]:
+        assert {"name", "accuracy", "f1", "ci95", "paper"} <= set(c)
+        assert 0 <= c["accuracy"] <= 1 and set(c["ci95"]) == {"accuracy", "f1"}
+
+
+def test_task_selection_tables_and_files(tmp_path: Path) -> None:
+    out_csv, out_png = tmp_path / "t3.csv", tmp_path / "t3.png"
+    res = run("task", "--trials", "2", "--task", "trashAll", "--jobs", "2", "--csv", str(out_csv),
+              "--plot", str(out_png))
+    assert res.exit_code == 0, res.stderr
+    assert "trashAll" in res.stdout and "collectAll" not in res.stdout
+    assert "6.32" in res.stdout  # the paper's mistakes beside ours
+    assert "mistakes" in res.stdout and "strict" in res.stdout  # metric definitions
+    rows = list(csv.DictReader(out_csv.open()))
+    assert {r["condition"] for r in rows} == {"trashAll"}
+    mistakes = [r for r in rows if r["group"] == "counts" and r["row"] == "mistakes"]
+    assert len(mistakes) == 1 and mistakes[0]["paper"] == "6.32"
+    assert out_png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_quiet_prints_nothing() -> None:
+    res = run("norms", "--trials", "1", "--quiet")
+    assert res.exit_code == 0 and res.stdout == ""
+
+
+@pytest.mark.parametrize(
+    ("args", "message"),
+    [
+        (["norms", "--learner", "foil"], "unknown learner 'foil'; known learners: ours, paper"),
+        (["norms", "--trials", "0"], "trials must be at least 1"),
+        (["norms", "--jobs", "0"], "jobs must be at least 1"),
+        (["task", "--task", "tidyAll"], "unknown task 'tidyAll'"),
+        (["ownership", "--world", "no/such/world.toml"], "does not exist"),
+    ],
+)
+def test_bad_input_is_one_line_and_exit_1(args: list[str], message: str) -> None:
+    res = run(*args, "--json")
+    assert res.exit_code == 1
+    assert message in res.stderr and res.stderr.count("\n") == 1
+    assert json.loads(res.stdout)["error"].startswith(res.stderr.strip().removeprefix("ownctl: ")[:20])
+
+
+def test_malformed_world_file_is_a_user_error(tmp_path: Path) -> None:
+    bad = tmp_path / "bad.toml"
+    bad.write_text('name = "x"\nagents = ["a"]\nnorms = ["forbid trash if ownedBy b"]\n')
+    with pytest.raises(OwnctlError, match="unknown agent 'b'"):
+        app_experiment.load_world(bad)
+    bad.write_text("name = \n")
+    with pytest.raises(OwnctlError, match="not valid TOML"):
+        app_experiment.load_world(bad)
+
+
+def test_paper_world_file_equals_the_builtin_world() -> None:
+    built = app_experiment.run("task", trials=2, seed=1)
+    filed = app_experiment.run("task", trials=2, seed=1, world=PAPER)
+    assert filed.extra["paper_comparable"] and built.extra["paper_comparable"]
+    for a, b in zip(built.conditions, filed.conditions, strict=True):
+        assert a.accuracy == b.accuracy and a.counts == b.counts
+
+
+def test_a_different_norm_set_runs_end_to_end() -> None:
+    factory = app_experiment.load_world(DESK)
+    assert not app_experiment.is_paper_world(factory)
+    world = factory(None)
+    assert "forbid pickUp if not ownedBy xuan and inArea desk_xuan" in world.norms
+    norms = app_experiment.run("norms", trials=3, world=DESK)
+    full = norms.conditions[0]
+    assert full.name == "noiseless 1.00" and full.accuracy.mean > 0.95
+    assert {r.name for r in full.groups["rules"].rows} == {"trash", "pickUp", "collect"}
+    assert full.paper == {}  # the paper's numbers are for its blocks world only
+    task = app_experiment.run("task", trials=1, world=DESK)
+    trash = task.conditions[1]
+    assert trash.counts["violations"].mean == 0
+    assert trash.counts["mistakes"].mean < 11  # baseline: 11 objects the norms protect from trashing
+    res = run("ownership", "--trials", "2", "--world", str(DESK))
+    assert res.exit_code == 0 and "blocks world only" in res.stdout
+
+
+def test_same_numbers_under_another_hash_seed() -> None:
+    code = ("import json; from ownctl.app.experiment import run; "
+            "print(json.dumps([c['groups'] for c in run('task', trials=2, seed=7).as_dict()['conditions']]))")
+    outs = []
+    for hash_seed in ("1", "2"):
+        env = {**os.environ, "PYTHONHASHSEED": hash_seed}
+        proc = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, env=env, cwd=ROOT)
+        assert proc.returncode == 0, proc.stderr
+        outs.append(proc.stdout)
+    assert outs[0] == outs[1]

@@ -1,0 +1,131 @@
+"""The in-memory Mind's additions (moves, snapshots, lazy prediction) and the shared task loop."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from ownctl.errors import BadValue, UnknownName
+from ownctl.experiment.kinematic import KinematicExecutor
+from ownctl.experiment.mind import Mind, Switches
+from ownctl.experiment.oracle import OracleInstructor
+from ownctl.experiment.task import SilentInstructor, StepRecord, get_task, inside, run_task
+from ownctl.experiment.truth import TrueNorms
+from ownctl.logic.rules import parse_norm
+from ownctl.world.generator import paper_blocks_world
+from ownctl.world.model import Area, ObjectSpec, World
+
+
+def paper(seed: int = 0) -> World:
+    return paper_blocks_world(np.random.default_rng([seed, 99]))
+
+
+def mind_of(world: World, **switches: bool) -> Mind:
+    return Mind(world.agents, list(world.objects), world.areas, switches=Switches(**switches))
+
+
+def test_lazy_prediction_equals_refitting_after_every_claim() -> None:
+    world = paper()
+    truth = world.true_ownership()
+    lazy, eager = mind_of(world), mind_of(world)
+    for i in (0, 1, 2, 5, 6):
+        for j, agent in enumerate(world.agents):
+            lazy.claim(i, agent, truth[i, j])
+            eager.claim(i, agent, truth[i, j])
+            _ = eager.prior  # force the refit now
+    assert np.array_equal(lazy.prior, eager.prior)
+    assert not np.allclose(lazy.prior, lazy.settings.predict.base_rate)  # predictions were made
+
+
+def test_move_changes_areas_but_examples_keep_the_state_they_were_given_in() -> None:
+    home = Area("home", (-0.1, -0.1, 0.1, 0.1))
+    objs = [ObjectSpec("a", "red", (0.5, 0.5, 0.0)), ObjectSpec("b", "red", (0.6, 0.5, 0.0))]
+    mind = Mind(("x",), objs, (home,), switches=Switches(prediction=False))
+    mind.permit("collect", 0, 0.0)
+    mind.move(0, (0.0, 0.0, 0.0))
+    mind.move(1, (0.0, 0.0, 0.0))
+    assert mind.frame().areas["home"].tolist() == [True, True]  # decisions see where objects are
+    ev, idx = mind.evidence("collect")
+    assert idx == [0] and ev.frame.areas["home"].tolist() == [False]  # the example: where it was
+    mind.permit("collect", 1, 1.0)  # a permission given now describes the object now
+    ev, idx = mind.evidence("collect")
+    assert ev.frame.areas["home"].tolist() == [False, True]
+
+
+def test_instructed_true_rules_decide_like_the_truth_with_true_owners() -> None:
+    world = paper()
+    mind = mind_of(world, inference=False, prediction=False)
+    mind.claims[:] = world.true_ownership()
+    for text in world.norms:
+        mind.instruct(parse_norm(text))
+    truth = TrueNorms(world)
+    for i, obj in enumerate(world.objects):
+        steps = ("find", "pickUp", "trash")
+        assert mind.decide("trash", i, steps)[0] == truth.violated(i, obj, steps)
+
+
+def test_referenced_agents_follow_the_true_rules_of_the_steps() -> None:
+    truth = TrueNorms(paper())
+    assert truth.referenced_agents(("find", "pickUp", "collect")) == ("agent2",)
+    assert truth.referenced_agents(("find", "pickUp", "trash")) == ("agent1", "agent2", "agent3")
+
+
+def test_kinematic_executor_puts_objects_on_distinct_spots_inside_the_area() -> None:
+    world = paper()
+    ex = KinematicExecutor(world)
+    home = next(a for a in world.areas if a.name == "home")
+    for obj in world.objects:
+        assert ex.perform("collect", obj.name).ok
+    spots = np.array([ex.position(o.name)[:2] for o in world.objects])
+    assert all(inside(home, ex.position(o.name)) for o in world.objects)
+    gaps = np.hypot(*(spots[:, None, :] - spots[None, :, :]).transpose(2, 0, 1))
+    assert gaps[np.triu_indices(len(spots), 1)].min() > 0.03
+    assert not ex.perform("trash", "no-such").ok
+    with pytest.raises(UnknownName):
+        ex.perform("wave", world.objects[0].name)
+
+
+def test_silent_instructor_run_delivers_everything_allowed_and_counts_violations() -> None:
+    world = paper(1)
+    mind = mind_of(world)
+    seen: list[StepRecord] = []
+    report = run_task(mind, world, "trashAll", KinematicExecutor(world), SilentInstructor(), seen.append)
+    assert [r.name for r in seen] == [o.name for o in world.objects]
+    truth = TrueNorms(world)
+    owned = world.true_ownership().max(axis=1) >= 0.5
+    trash = next(a for a in world.areas if a.name == "trash")
+    start_inside = [inside(trash, o.position) for o in world.objects]
+    expected = sum(owned[i] and not start_inside[i] for i in range(len(world.objects)))
+    assert len(report.violations) == expected == report.mistakes  # nothing known: all allowed
+    assert len(report.delivered) == sum(not s for s in start_inside)
+    assert all(r.outcome == "done" for r, s in zip(seen, start_inside, strict=True) if s)
+    assert not any(mind.rules.values())  # nobody taught it anything
+    assert truth.rules.keys() == report.rules.keys()
+
+
+def test_oracle_run_is_consistent_and_learns() -> None:
+    world = paper(2)
+    mind = mind_of(world)
+    report = run_task(mind, world, "collectAll", KinematicExecutor(world), OracleInstructor(world))
+    records = [r for r in report.records if r.outcome != "done"]
+    for r in records:
+        assert r.mistake == (r.allowed == r.violated)
+        # the oracle corrects every mistake: violations are never executed, refusals of allowed
+        # actions are forced
+        if r.mistake:
+            assert (r.outcome == "skipped") == r.violated and r.forced == (not r.allowed)
+    assert report.violations == []
+    assert report.mistakes < 8.75  # the allow-everything baseline of the paper
+    assert report.relevant == ("pickUp", "collect")
+    for r in records:  # the oracle gave the true permission of every step of every attempt
+        assert all(not np.isnan(mind.perms[s][r.obj]) for s in ("find", "pickUp", "collect"))
+    assert report.rule_average().accuracy > 0.9
+
+
+def test_task_needs_its_area_and_a_known_name() -> None:
+    world = paper()
+    bare = World("bare", world.agents, world.objects, (), world.norms, world.owners)
+    with pytest.raises(BadValue, match="area 'home'"):
+        run_task(mind_of(bare), bare, "collectAll", KinematicExecutor(bare), SilentInstructor())
+    with pytest.raises(UnknownName, match="collectAll, trashAll"):
+        get_task("tidyAll")

@@ -1,0 +1,103 @@
+"""Protocols of Tables 1-3 and the runner: seeds, determinism whatever the job count, aggregation."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from ownctl.errors import BadValue, UnknownName
+from ownctl.experiment.norms import NORM_CONDITIONS, norms_result
+from ownctl.experiment.online import TASK_CONDITIONS, task_trial
+from ownctl.experiment.ownership import OWNERSHIP_CONDITIONS, ownership_trial
+from ownctl.experiment.runner import run_experiment
+from ownctl.world.generator import paper_blocks_world
+
+
+def numbers(result, conditions=None) -> list[float]:
+    out = []
+    for c in result.conditions if conditions is None else conditions:
+        for g in c.groups.values():
+            for r in (*g.rows, g.average):
+                out += [cell.mean for cell in r.cells.values()] + [cell.ci95 for cell in r.cells.values()]
+        out += [cell.mean for cell in c.counts.values()]
+    return out
+
+
+def test_table2_conditions_agree_on_the_held_out_half_by_construction() -> None:
+    # inference only touches objects with permissions and prediction learns from claims alone, so
+    # the three conditions give the same held-out ownership for the same world (reference 7.4)
+    for t in range(3):
+        held_out = []
+        for cond in OWNERSHIP_CONDITIONS:
+            res = ownership_trial(paper_blocks_world, cond, "ours", np.random.default_rng([5, t]))
+            held_out.append([s.as_array() for s in res.groups["test"].values()])
+        assert np.array_equal(held_out[0], held_out[1]) and np.array_equal(held_out[0], held_out[2])
+
+
+def test_table2_claimed_objects_are_known_exactly() -> None:
+    res = ownership_trial(paper_blocks_world, OWNERSHIP_CONDITIONS[2], "ours", np.random.default_rng(3))
+    test, every = res.groups["test"], res.groups["all"]
+    for agent in test:  # all = half known exactly + the held-out half
+        assert every[agent].accuracy == pytest.approx(0.5 + 0.5 * test[agent].accuracy)
+
+
+def test_table1_baseline_and_full_permissions() -> None:
+    base = norms_result(paper_blocks_world, NORM_CONDITIONS[-1], "ours", np.random.default_rng(0))
+    assert all(s.f1 == 0.0 for s in base.groups["rules"].values())
+    full = norms_result(paper_blocks_world, NORM_CONDITIONS[0], "ours", np.random.default_rng(0))
+    assert all(s.accuracy == 1.0 for s in full.groups["rules"].values())
+
+
+def test_table3_trial_reports_counts_and_both_rule_averages() -> None:
+    res = task_trial(paper_blocks_world, TASK_CONDITIONS[1], "ours", np.random.default_rng(4))
+    assert set(res.groups) == {"rules", "rules_all", "ownership"}
+    assert list(res.groups["rules"]) == ["pickUp", "trash"]
+    assert set(res.groups["rules_all"]) == {"trash", "pickUp", "collect"}
+    assert res.counts["delivered"] + res.counts["skipped"] <= 20
+    assert res.counts["violations"] == 0 and res.counts["mistakes"] >= 1
+
+
+def test_results_do_not_depend_on_the_number_of_jobs() -> None:
+    one = run_experiment("task", 3, 11, 1, paper_blocks_world, "ours")
+    two = run_experiment("task", 3, 11, 2, paper_blocks_world, "ours")
+    assert numbers(one) == numbers(two)
+    other = run_experiment("task", 3, 12, 1, paper_blocks_world, "ours")
+    assert numbers(one) != numbers(other)
+
+
+def test_a_condition_alone_gives_the_same_numbers_as_within_all() -> None:
+    both = run_experiment("task", 2, 5, 1, paper_blocks_world, "paper")
+    alone = run_experiment("task", 2, 5, 1, paper_blocks_world, "paper", conditions=["trashAll"])
+    assert [c.name for c in alone.conditions] == ["trashAll"]
+    assert numbers(alone) == numbers(both, both.conditions[1:])
+
+
+def test_progress_and_aggregation() -> None:
+    calls: list[tuple[int, int]] = []
+    res = run_experiment("ownership", 4, 0, 1, paper_blocks_world, "ours",
+                         progress=lambda d, t: calls.append((d, t)))
+    assert calls[0] == (0, 12) and calls[-1] == (12, 12)
+    assert [d for d, _ in calls] == sorted(d for d, _ in calls)
+    cond = res.conditions[0]
+    rows = cond.groups["test"].rows
+    assert [r.name for r in rows] == ["agent1", "agent2", "agent3"]
+    mean_of_rows = np.mean([r["accuracy"].mean for r in rows])
+    assert cond.accuracy.mean == pytest.approx(mean_of_rows)
+    assert cond.accuracy.ci95 >= 0
+    doc = res.as_dict()
+    assert doc["experiment"] == "ownership" and doc["trials"] == 4 and doc["seed"] == 0
+    first = doc["conditions"][0]
+    assert set(first) >= {"name", "accuracy", "f1", "ci95", "paper"}
+    assert first["paper"] == {"accuracy": 0.904, "f1": 0.757}
+    assert doc["seconds"] > 0
+
+
+def test_bad_settings_are_user_errors() -> None:
+    with pytest.raises(BadValue):
+        run_experiment("norms", 0, 0, 1, paper_blocks_world, "ours")
+    with pytest.raises(BadValue):
+        run_experiment("norms", 1, 0, 0, paper_blocks_world, "ours")
+    with pytest.raises(UnknownName, match="ours, paper"):
+        run_experiment("norms", 1, 0, 1, paper_blocks_world, "foil")
+    with pytest.raises(UnknownName, match="norms, ownership, task"):
+        run_experiment("tables", 1, 0, 1, paper_blocks_world, "ours")
