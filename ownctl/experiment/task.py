@@ -15,14 +15,15 @@ report's metrics, never by the Mind.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
 
 from ownctl.errors import BadValue, UnknownName
-from ownctl.experiment.metrics import Scores, ownership_scores, rule_scores
+from ownctl.experiment.metrics import ownership_scores, rule_scores
 from ownctl.experiment.mind import Mind
+from ownctl.experiment.task_report import StepRecord, TaskReport
 from ownctl.experiment.truth import TrueNorms
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.vocab import object_steps
@@ -107,79 +108,6 @@ class SilentInstructor:
     def react(self, attempt: Attempt, mind: Mind) -> Verdict:
         """Never teaches, never overrides."""
         return Verdict()
-
-
-@dataclass(frozen=True)
-class StepRecord:
-    """What happened to one object: decision, truth, outcome (``delivered``, ``skipped``, ``done``)."""
-
-    obj: int
-    name: str
-    outcome: str
-    allowed: bool = True
-    violated: bool = False
-    mistake: bool = False
-    forced: bool = False
-    reason: str = ""
-    forbidding: tuple[str, ...] = ()
-
-
-@dataclass(frozen=True)
-class TaskReport:
-    """The outcome of a task run and the learned beliefs' quality against the ground truth.
-
-    ``rules[action]`` scores the learned rules of every action with a true norm on the objects'
-    state after the task; ``relevant`` are those among the task's steps (the paper's average);
-    ``ownership[agent]`` scores the posterior on all objects (strict metric).
-    """
-
-    task: str
-    records: tuple[StepRecord, ...]
-    rules: dict[str, Scores] = field(default_factory=dict)
-    relevant: tuple[str, ...] = ()
-    ownership: dict[str, Scores] = field(default_factory=dict)
-
-    def _names(self, pred: Callable[[StepRecord], bool]) -> list[str]:
-        return [r.name for r in self.records if pred(r)]
-
-    @property
-    def mistakes(self) -> int:
-        """Wrong decisions: allowed though the true norms forbid, or refused though they allow."""
-        return sum(r.mistake for r in self.records)
-
-    @property
-    def delivered(self) -> list[str]:
-        """Objects the robot acted on successfully."""
-        return self._names(lambda r: r.outcome == "delivered")
-
-    @property
-    def skipped(self) -> list[tuple[str, str]]:
-        """(object, reason) for every object left where it was."""
-        return [(r.name, r.reason) for r in self.records if r.outcome == "skipped"]
-
-    @property
-    def violations(self) -> list[str]:
-        """Objects acted on although the true norms forbid it."""
-        return self._names(lambda r: r.outcome == "delivered" and r.violated)
-
-    @property
-    def forced(self) -> list[str]:
-        """Objects the instructor made the robot act on after it refused."""
-        return self._names(lambda r: r.forced)
-
-    def rule_average(self, actions: Sequence[str] | None = None) -> Scores:
-        """Rule scores averaged over ``actions`` (default: the relevant ones)."""
-        return _mean([self.rules[a] for a in (self.relevant if actions is None else actions)])
-
-    def ownership_average(self) -> Scores:
-        """Ownership scores averaged over agents."""
-        return _mean(list(self.ownership.values()))
-
-
-def _mean(scores: Sequence[Scores]) -> Scores:
-    if not scores:
-        return Scores(1.0, 1.0, 1.0, 1.0)
-    return Scores(*np.mean([s.as_array() for s in scores], axis=0).tolist())
 
 
 def area_named(areas: Sequence[Area], name: str) -> Area:

@@ -129,3 +129,14 @@ def test_task_needs_its_area_and_a_known_name() -> None:
         run_task(mind_of(bare), bare, "collectAll", KinematicExecutor(bare), SilentInstructor())
     with pytest.raises(UnknownName, match="collectAll, trashAll"):
         get_task("tidyAll")
+
+
+def test_report_json_has_the_run_shape() -> None:
+    world = paper(3)
+    report = run_task(mind_of(world), world, "trashAll", KinematicExecutor(world), OracleInstructor(world))
+    doc = report.as_dict()
+    assert {"task", "delivered", "skipped", "mistakes", "violations", "rule", "ownership"} <= set(doc)
+    assert doc["task"] == "trashAll" and doc["mistakes"] == report.mistakes
+    assert set(doc["rule"]) >= {"accuracy", "f1"} and set(doc["ownership"]) >= {"accuracy", "f1"}
+    assert len(doc["steps"]) == len(world.objects)
+    assert all(s["reason"] for s in doc["skipped"])
