@@ -7,8 +7,7 @@ The one place where beliefs are resolved (DESIGN section 3):
 - :func:`induction_belief` (what rule induction sees): the claim, else the prior, else 0.0.
 
 :func:`after_claims` and :func:`after_permissions` are the hooks where prediction (KLR) and
-rule-based Bayesian inference will recompute priors and posteriors; both currently keep the stored
-beliefs as they are.
+rule-based Bayesian inference recompute priors and posteriors (:mod:`ownctl.app.learning`).
 """
 
 from __future__ import annotations
@@ -109,10 +108,16 @@ def snapshot(
 def after_claims(tx: Tx, agents: Sequence[str], now: float) -> None:
     """Hook after claims about ``agents`` changed: re-predict priors, then re-infer posteriors.
 
-    Prediction (DESIGN 5) and inference (DESIGN 3) plug in here, honouring the settings flags
-    ``disabled.prediction`` and ``disabled.inference``; until then claims are used as they are.
+    Honours the settings flags ``disabled.prediction`` and ``disabled.inference``.
     """
+    from ownctl.app.learning import reinfer, repredict
+
+    repredict(tx, agents, now)
+    reinfer(tx, now)
 
 
 def after_permissions(tx: Tx, actions: Sequence[str], now: float) -> None:
-    """Hook after permissions changed: rule induction (DESIGN 4) and posterior inference plug in here."""
+    """Hook after permissions were removed or reset: posteriors follow the remaining evidence."""
+    from ownctl.app.learning import reinfer
+
+    reinfer(tx, now)

@@ -16,8 +16,9 @@ from __future__ import annotations
 
 from typing import Any
 
-from ownctl.app.beliefs import after_claims, after_permissions
+from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
+from ownctl.app.learning import learn_from_norm, learn_from_permission, reinfer
 from ownctl.app.settings import probability
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
@@ -71,12 +72,21 @@ def add_permission(ctx: AppContext, action: str, obj: str, value: float, speaker
         if tx.settings().get("frozen.perms"):
             raise OwnctlError("permissions are frozen: new permissions are refused (ownctl unfreeze perms)")
         row = tx.set_permission(action, tx.object(obj).id, value, speaker, ctx.now)
-        after_permissions(tx, [action], ctx.now)
+        outcome = learn_from_permission(tx, action, row.object_id, ctx.now)
+        reinfer(tx, ctx.now)
         permission_id = row.id
+        rules = [r.text for r in tx.rules(action)]
     verb = "forbidden" if value >= 0.5 else "allowed"
+    learned = ""
+    if outcome is not None and outcome.induced:
+        learned = "; induction ran, rules of " + action + ": " + ("; ".join(rules) or "(none)")
+    elif outcome is not None:
+        learned = f"; rules already agree with {outcome.accuracy:.0%} of the examples (kept for inference)"
     return Done(
-        f"noted: {action} {verb} on {obj} (permission {permission_id})",
-        {"id": permission_id, "action": action, "object": obj, "value": value},
+        f"noted: {action} {verb} on {obj} (permission {permission_id}){learned}",
+        {"id": permission_id, "action": action, "object": obj, "value": value,
+         "induced": bool(outcome and outcome.induced),
+         "accuracy": None if outcome is None else outcome.accuracy, "rules": rules},
     )
 
 
@@ -99,16 +109,18 @@ def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
         check_references(tx, norm.rule)
         if tx.settings().get("frozen.rules"):
             raise OwnctlError("rules are frozen: given norms are refused (ownctl unfreeze rules)")
-        if norm.sign == "allow":
-            return Done(
-                f"noted: {canonical!r} is recorded and will be subtracted from the forbid rules of "
-                f"{norm.rule.action} by the learner",
-                {"text": canonical, "sign": "allow", "stored": False},
-            )
-        before = {r.id for r in tx.rules(norm.rule.action)}
-        provenance = {"given": canonical, "speaker": speaker}
-        row = tx.add_rule(norm.rule.action, norm.rule.text(), "given", provenance, ctx.now)
-        fresh = row.id not in before
-        rule_id = row.id
-    message = f"added rule {rule_id}: {canonical}" if fresh else f"rule {rule_id} already says: {canonical}"
-    return Done(message, {"id": rule_id, "text": canonical, "sign": "forbid", "stored": fresh})
+        before = {r.text for r in tx.rules(norm.rule.action)}
+        learn_from_norm(tx, norm, speaker, ctx.now)
+        reinfer(tx, ctx.now)
+        after = [(r.id, r.text) for r in tx.rules(norm.rule.action)]
+    added = [t for _, t in after if t not in before]
+    removed = sorted(before - {t for _, t in after})
+    parts = [f"added: {t}" for t in added] + [f"removed: {t}" for t in removed]
+    if not parts:
+        parts = ["the rules already say so" if norm.sign == "forbid" else "no rule covered it"]
+    return Done(
+        f"{canonical}: " + "; ".join(parts),
+        {"id": next((i for i, t in after if t == canonical), next((i for i, t in after if t in added), None)),
+         "text": canonical, "sign": norm.sign, "stored": bool(added), "added": added, "removed": removed,
+         "rules": [{"id": i, "text": t} for i, t in after]},
+    )

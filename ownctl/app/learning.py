@@ -119,8 +119,8 @@ def _allows(tx: Tx, action: str) -> list[Rule]:
     return [parse_norm(t).rule for t in tx.settings().get(f"allow.{action}", [])]
 
 
-def learn_from_permission(tx: Tx, action: str, now: float) -> Outcome | None:
-    """The gate and induction after the newest permission of ``action`` was stored."""
+def learn_from_permission(tx: Tx, action: str, object_id: int, now: float) -> Outcome | None:
+    """The gate and induction after the permission of ``action`` on ``object_id`` was stored."""
     stored = tx.settings()
     if stored.get("frozen.rules"):
         return None
@@ -149,7 +149,8 @@ def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outc
     action = norm.rule.action
     ev, object_ids, snap = _evidence(tx, action, now)
     rules, _ = _rules(tx, action)
-    out = learn_norm(norm, rules, ev, _vocabulary(tx, snap), to_config(tx.settings()).learn)
+    out = learn_norm(norm, rules, ev, _vocabulary(tx, snap), to_config(tx.settings()).learn,
+                     _allows(tx, action))
     names = [snap.objects[snap.ids.index(oid)].name for oid in object_ids]
     if norm.sign == "allow":
         key = f"allow.{action}"

@@ -14,7 +14,7 @@ from ownctl.logic.rules import Literal, Rule
 
 
 def refine(rule: Rule, atoms: Sequence[Literal]) -> list[Rule]:
-    """Every one-literal specialisation of ``rule``: for each unused atom, ``rule and a`` then ``rule and not a``."""
+    """Every one-literal specialisation of ``rule``: per unused atom, ``rule and a``, ``rule and not a``."""
     used = {lit.atom for lit in rule.literals}
     out: list[Rule] = []
     for atom in atoms:

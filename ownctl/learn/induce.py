@@ -128,7 +128,8 @@ class Inducer:
                 pos = self.ev.positives & self._covers(r)
 
                 def score(truths: np.ndarray, cands: Sequence[Rule], pos=pos) -> np.ndarray:
-                    return (self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
+                    covered = self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold
+                    return covered.sum(axis=1).astype(float)
 
                 thr = max(1.0, self.cfg.example_tolerance * pos.sum())
                 result = self._search(r, score, thr, (keeps_neg,))
@@ -249,13 +250,20 @@ def learn_permission(
 
 
 def learn_norm(
-    norm: Norm, rules: Sequence[Rule], ev: Evidence, vocab: Vocabulary, cfg: LearnConfig
+    norm: Norm, rules: Sequence[Rule], ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
+    allows: Sequence[Rule] = (),
 ) -> Outcome:
-    """One-shot instruction of a forbid (cover rule) or allow (uncover rule) norm."""
+    """One-shot instruction of a forbid (cover rule) or allow (uncover rule) norm.
+
+    The ``ours`` learner keeps earlier allow norms in force: a forbid norm given later is added
+    minus them (the paper's system forgot an allow norm once it had been subtracted).
+    """
     accuracy = ev.soft_accuracy(rules)
     ind = Inducer(norm.rule.action, ev, vocab, cfg)
     if norm.sign == "forbid":
         current = ind.cover_rule(list(rules), norm.rule)
+        for allow in allows if ind.ours else ():
+            current = subtract(current, allow, ind._merge)
     else:
         current = ind.uncover_rule(list(rules), norm.rule)
     return Outcome(tuple(current), True, accuracy)

@@ -11,12 +11,11 @@ prints as ``forbid trash`` (always forbidden).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ownctl.errors import RuleSyntaxError
-import re
-
 from ownctl.logic.names import RESERVED, is_name
 from ownctl.logic.vocab import ACTIONS, PREDICATES
 

@@ -24,7 +24,9 @@ from ownctl.logic.prob import OTHER, enumerate_worlds, relevant_atoms, rule_trut
 from ownctl.logic.rules import Rule
 
 
-def _group_keys(permissions: Mapping[str, np.ndarray], actions: Sequence[str], n: int) -> list[tuple[str, ...]]:
+def _group_keys(
+    permissions: Mapping[str, np.ndarray], actions: Sequence[str], n: int
+) -> list[tuple[str, ...]]:
     """For each object, the actions (with rules) that have a permission on it."""
     known = {a: ~np.isnan(np.asarray(permissions[a], dtype=float)) for a in actions}
     return [tuple(a for a in actions if known[a][i]) for i in range(n)]
