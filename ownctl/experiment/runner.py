@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from concurrent.futures import ProcessPoolExecutor, as_completed
 from dataclasses import dataclass, field
 from typing import Any
@@ -180,6 +180,6 @@ def run_experiment(
 
 
 def _iterate_serial(name: str, world_factory: WorldFactory, learner: str, seed: int,
-                    pairs: Sequence[tuple[int, int]]):  # type: ignore[no-untyped-def]
+                    pairs: Sequence[tuple[int, int]]) -> Iterator[tuple[int, int, TrialResult, float]]:
     for pair in pairs:
         yield from _run_chunk(name, world_factory, learner, seed, [pair])
