@@ -35,26 +35,33 @@ def read_world(path: str, seed: int = 0) -> World:
     return world_from_dict(data, str(path), np.random.default_rng(seed))
 
 
+def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = False) -> None:
+    """Add ``world``'s agents (reused when they exist), areas, objects and ground truth to the store."""
+    agents = {a.name: a.id for a in tx.agents()}
+    for name in world.agents:
+        if name not in agents:
+            agents[name] = tx.add_agent(name, now).id
+    known_areas = {a.name for a in tx.areas()} if skip_existing_areas else set()
+    for area in world.areas:
+        if area.name not in known_areas:
+            tx.add_area(area.name, area.box)
+    truth: list[tuple[int, int, float]] = []
+    for spec in world.objects:
+        x, y, z = spec.position if spec.position is not None else (None, None, None)
+        row = tx.add_object(spec.name, now, color=spec.color, x=x, y=y, z=z)
+        tx.set_categories(row.id, spec.categories)
+        for agent, age in spec.last_touch.items():
+            tx.touch(row.id, agents[agent], now - age)
+        truth += [(row.id, agents[a], p) for a, p in world.owners.get(spec.name, {}).items()]
+    tx.set_truth(truth, world.norms)
+
+
 def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
     """Add the world in ``path`` to the store, in one transaction."""
     world = read_world(path, seed)
     payload = {"op": "world.load", "file": str(path), "world": world.name, "seed": seed}
     with ctx.write(payload) as tx:
-        agents = {a.name: a.id for a in tx.agents()}
-        for name in world.agents:
-            if name not in agents:
-                agents[name] = tx.add_agent(name, ctx.now).id
-        for area in world.areas:
-            tx.add_area(area.name, area.box)
-        truth: list[tuple[int, int, float]] = []
-        for spec in world.objects:
-            x, y, z = spec.position if spec.position is not None else (None, None, None)
-            row = tx.add_object(spec.name, ctx.now, color=spec.color, x=x, y=y, z=z)
-            tx.set_categories(row.id, spec.categories)
-            for agent, age in spec.last_touch.items():
-                tx.touch(row.id, agents[agent], ctx.now - age)
-            truth += [(row.id, agents[a], p) for a, p in world.owners.get(spec.name, {}).items()]
-        tx.set_truth(truth, world.norms)
+        store_world(tx, world, ctx.now)
     counts = {"agents": len(world.agents), "areas": len(world.areas), "objects": len(world.objects)}
     listing = ", ".join(f"{n} {k}" for k, n in counts.items())
     return Done(

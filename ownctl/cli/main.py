@@ -15,6 +15,8 @@ from ownctl import __version__
 from ownctl.cli import admin, instruct, query, things
 from ownctl.cli.batch import batch
 from ownctl.cli.common import OwnctlGroup, State, clock, command_text
+from ownctl.cli.experiment_cmd import experiment_app
+from ownctl.cli.run_cmd import run as run_task
 
 app = typer.Typer(
     cls=OwnctlGroup,
@@ -80,6 +82,8 @@ app.command("unfreeze")(admin.unfreeze)
 app.command("disable")(admin.disable)
 app.command("enable")(admin.enable)
 app.command("batch")(batch)
+app.command("run")(run_task)
+app.add_typer(experiment_app, name="experiment")
 
 
 @lru_cache(maxsize=1)

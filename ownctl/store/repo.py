@@ -8,6 +8,7 @@ Beliefs about many (object, agent) pairs are written with one bulk UPDATE by pri
 from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
+from dataclasses import dataclass
 from typing import Any
 
 from sqlalchemy import delete, func, insert, select, update
@@ -32,6 +33,19 @@ from ownctl.store.models import (
 )
 
 BELIEF_KINDS = ("claim", "prior", "posterior")
+
+KEEP: Any = object()  # "leave this part of the conversation as it is" (Tx.converse)
+
+
+@dataclass(frozen=True)
+class Talk:
+    """The conversation context by name: who speaks, what "this" is, what the robot is doing on it,
+    and the last refusal (``{"action", "object", ...}``, for "why not?")."""
+
+    speaker: str | None = None
+    target: str | None = None
+    action: str | None = None
+    refusal: dict[str, Any] | None = None
 
 
 class Tx:
@@ -70,8 +84,8 @@ class Tx:
 
     # -- objects --------------------------------------------------------------------------------
     def objects(self) -> list[Object]:
-        """Every object, by name."""
-        return list(self.session.scalars(select(Object).order_by(Object.name)))
+        """Every object, in the order they were added (by id), as the paper's tasks visit them."""
+        return list(self.session.scalars(select(Object).order_by(Object.id)))
 
     def object(self, name: str) -> Object:
         """The object called ``name``."""
@@ -285,6 +299,36 @@ class Tx:
             self.session.add(row)
             self.session.flush()
         return row
+
+    def conversation(self) -> Talk:
+        """The conversation context (empty when nothing was said or checked yet).
+
+        The ``last_refusal`` JSON column holds ``{"action": current action, "refusal": {...}}``; a bare
+        refusal record (``{"action", "object", ...}``) is read as both the refusal and the action.
+        """
+        row = self.session.get(Conversation, 1)
+        if row is None:
+            return Talk()
+        target = self.object_by_id(row.target_id) if row.target_id is not None else None
+        raw = row.last_refusal or {}
+        refusal = raw if "object" in raw else raw.get("refusal")
+        return Talk(row.speaker, target.name if target else None, raw.get("action"), refusal)
+
+    def converse(
+        self, *, speaker: Any = KEEP, target: Any = KEEP, action: Any = KEEP, refusal: Any = KEEP
+    ) -> Talk:
+        """Update the parts of the conversation given (None clears one); returns the new context."""
+        now = self.conversation()
+        row = self.context()
+        if speaker is not KEEP:
+            row.speaker = speaker
+        if target is not KEEP:
+            row.target_id = None if target is None else self.object(target).id
+        action = now.action if action is KEEP else action
+        refusal = now.refusal if refusal is KEEP else refusal
+        row.last_refusal = {"action": action, "refusal": refusal}
+        self.session.flush()
+        return self.conversation()
 
     def log(
         self, time: float, actor: str | None, interface: str, command: str, payload: dict[str, Any]

@@ -1,0 +1,75 @@
+"""``ownctl run trashAll|collectAll``: the paper's tasks with the Baxter in MuJoCo (or kinematically)."""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+import typer
+
+from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit
+
+EXIT_STEP_FAILED = 4
+MARKS = {"delivered": "[green]moved[/]", "skipped": "[yellow]left[/]", "done": "[dim]done[/]"}
+
+
+def run(
+    ctx: typer.Context,
+    task: Annotated[str, typer.Argument(help="The task: trashAll or collectAll.")],
+    instructor: Annotated[
+        str, typer.Option(help="oracle: a simulated human corrects mistakes from the world's truth; none.")
+    ] = "oracle",
+    physics: Annotated[bool, typer.Option("--physics/--kinematic", help="MuJoCo, or teleport.")] = True,
+    seed: Annotated[int, typer.Option(help="Seed of the blocks world loaded into an empty store.")] = 0,
+    layout_seed: Annotated[
+        int | None, typer.Option(help="Add a new layout of the same world (same agents and true norms).")
+    ] = None,
+    arm: Annotated[str, typer.Option(help="auto (the nearer arm), left or right.")] = "auto",
+    grasp: Annotated[str, typer.Option(help="weld (fingers close, then hold) or friction.")] = "weld",
+    render: Annotated[str | None, typer.Option(metavar="FILE", help="Write FILE.png or FILE.mp4.")] = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Play a task on the store's world, obeying (and learning) its norms; exit 4 if a step failed."""
+    from rich.console import Console
+    from rich.live import Live
+    from rich.table import Table
+
+    from ownctl.app import run as runner
+
+    live_rows: list[Any] = []
+    shown = not (json_out or quiet)
+    grid = Table("object", "fate", "reason", "mistake", title=f"{task}", expand=False)
+    console = Console(stderr=True)
+
+    def on_step(record: Any) -> None:
+        live_rows.append(record)
+        if shown:
+            grid.add_row(record.name, MARKS.get(record.outcome, record.outcome), record.reason,
+                         "yes" if record.mistake else "")
+
+    kwargs = dict(instructor=instructor, physics=physics, seed=seed, layout_seed=layout_seed, arm=arm,
+                  grasp=grasp, render=render, on_step=on_step)
+    if shown:
+        with Live(grid, console=console, refresh_per_second=8, transient=False):
+            result = runner.run(app_ctx(ctx), task, **kwargs)
+        console.print()
+    else:
+        result = runner.run(app_ctx(ctx), task, **kwargs)
+    data = result.as_json()
+
+    def human() -> None:
+        rule, own = data["rule"], data["ownership"]
+        rtf = f", {data['real_time_factor']:.0f}x real time" if data["sim_seconds"] else ""
+        typer.echo(
+            f"{task}: {len(data['delivered'])} delivered, {len(data['skipped'])} left, "
+            f"{data['mistakes']} mistakes, {len(data['violations'])} norm violations executed\n"
+            f"rules ({', '.join(rule['actions'])}): accuracy {rule['accuracy']:.3f}, F1 {rule['f1']:.3f}; "
+            f"ownership: accuracy {own['accuracy']:.3f}, F1 {own['f1']:.3f}\n"
+            f"sim {data['sim_seconds']:.1f} s, wall {data['wall_seconds']:.2f} s{rtf}"
+        )
+        for failure in data["failed_steps"]:
+            typer.echo(f"failed step: {failure}", err=True)
+
+    emit(data, json_out, quiet, human)
+    if not result.ok:
+        raise typer.Exit(EXIT_STEP_FAILED)
