@@ -63,10 +63,25 @@ class Execution:
     error: str | None = None
 
 
-class Executor(Protocol):
-    """Performs object actions (``trash``, ``collect``) and reports object positions."""
+class Outcome(Protocol):
+    """What :meth:`Executor.perform` returns: :class:`Execution`, or anything with ``ok`` and
+    ``error`` (``sim.world.StepOutcome`` qualifies, so a physics executor is a thin wrapper)."""
 
-    def perform(self, action: str, name: str) -> Execution:
+    @property
+    def ok(self) -> bool: ...
+
+    @property
+    def error(self) -> str | None: ...
+
+
+class Executor(Protocol):
+    """Performs object actions (``trash``, ``collect``) and reports object positions.
+
+    A physics executor: ``perform = lambda action, name: getattr(physics_world, action)(name)``
+    and ``position = physics_world.position``.
+    """
+
+    def perform(self, action: str, name: str) -> Outcome:
         """Do ``action`` on object ``name``."""
         ...
 

@@ -140,3 +140,25 @@ def test_report_json_has_the_run_shape() -> None:
     assert set(doc["rule"]) >= {"accuracy", "f1"} and set(doc["ownership"]) >= {"accuracy", "f1"}
     assert len(doc["steps"]) == len(world.objects)
     assert all(s["reason"] for s in doc["skipped"])
+
+
+def test_failed_actions_are_skipped_with_their_reason() -> None:
+    from dataclasses import dataclass
+
+    @dataclass
+    class Outcome:  # any object with ok and error will do (e.g. sim.world.StepOutcome)
+        ok: bool
+        error: str | None
+
+    world = paper(4)
+
+    class Slippery(KinematicExecutor):
+        def perform(self, action: str, name: str) -> Outcome:  # type: ignore[override]
+            if name == "block1":
+                return Outcome(False, "the grasp slipped")
+            super().perform(action, name)
+            return Outcome(True, None)
+
+    report = run_task(mind_of(world), world, "trashAll", Slippery(world), SilentInstructor())
+    assert ("block1", "failed: the grasp slipped") in report.skipped
+    assert "block1" not in report.delivered and report.delivered
