@@ -149,6 +149,7 @@ def _ensure_world(ctx: AppContext, seed: int, layout_seed: int | None) -> bool:
         empty = not tx.objects()
         agents = tuple(a.name for a in tx.agents())
         norms = tuple(tx.truth_norms())
+        base_seed = tx.settings().get("world.seed")
     if not empty and layout_seed is None:
         return False
     rng = np.random.default_rng(seed if layout_seed is None else layout_seed)
@@ -157,10 +158,13 @@ def _ensure_world(ctx: AppContext, seed: int, layout_seed: int | None) -> bool:
     else:
         if not norms:
             raise OwnctlError("--layout-seed needs a store whose world has true norms (load a world file)")
+        places = None if base_seed is None else np.random.default_rng(int(base_seed))
         world = paper_blocks_world(rng, agents=agents or ("agent1", "agent2", "agent3"), norms=norms,
-                                   prefix=f"l{layout_seed}-block")
+                                   prefix=f"l{layout_seed}-block", places=places)
     with ctx.write({"op": "world.generate", "seed": seed, "layout_seed": layout_seed}) as tx:
         store_world(tx, world, ctx.now, skip_existing_areas=True)
+        if empty:
+            tx.set_setting("world.seed", seed)
     return True
 
 

@@ -43,16 +43,22 @@ def paper_blocks_world(
     agents: tuple[str, ...] = PAPER_AGENTS,
     norms: tuple[str, ...] = PAPER_NORMS,
     prefix: str = "block",
+    places: np.random.Generator | None = None,
 ) -> World:
-    """A fresh random blocks world with its ground truth (true owners and true norms)."""
+    """A fresh random blocks world with its ground truth (true owners and true norms).
+
+    ``places`` draws where the agents sit (their sectors' cluster centres); by default ``rng`` does.
+    A new layout of the same world draws new objects around the same places.
+    """
     k = len(agents)
     if k < 1 or n_objects < 0:
         raise BadValue(f"a blocks world needs at least one agent and a non-negative object count, got "
                        f"{k} agents and {n_objects} objects")
     centres = [np.zeros(2)]
+    where = rng if places is None else places
     for i in range(k):
-        radius = rng.uniform(*AVATAR_RANGE)
-        angle = rng.uniform(i, i + 1) * 2 * np.pi / k
+        radius = where.uniform(*AVATAR_RANGE)
+        angle = where.uniform(i, i + 1) * 2 * np.pi / k
         centres.append(radius * np.array([np.cos(angle), np.sin(angle)]))
     objects: list[ObjectSpec] = []
     owners: dict[str, dict[str, float]] = {}

@@ -1,0 +1,111 @@
+"""``ownctl run``: the paper's tasks on the store's world, obeying and learning norms."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import pytest
+
+from tests.cli.conftest import Ownctl
+
+SMALL_WORLD = """
+name = "three blocks"
+agents = ["alexis", "xuan"]
+norms = ["forbid trash if ownedBy any"]
+
+[[areas]]
+name = "home"
+box = [-0.1, -0.1, 0.1, 0.1]
+
+[[areas]]
+name = "trash"
+box = [-0.3, 0.6, 0.2, 1.1]
+
+[[objects]]
+name = "wallet"
+color = "red"
+position = [0.5, 0.3, 0.0]
+owners = { alexis = 1.0 }
+
+[[objects]]
+name = "cup"
+color = "blue"
+position = [0.4, -0.4, 0.0]
+
+[[objects]]
+name = "can"
+color = "green"
+position = [-0.5, 0.2, 0.0]
+"""
+
+
+def without_timing(report: dict) -> dict:
+    return {k: v for k, v in report.items() if k not in ("wall_seconds", "real_time_factor")}
+
+
+def test_fresh_store_gets_the_paper_world_and_the_same_seed_gives_the_same_report(
+    tmp_path: Path, ownctl: Ownctl
+) -> None:
+    first = ownctl.json("run", "trashAll", "--kinematic", "--seed", "3")
+    assert first["loaded_world"] is True
+    assert set(first) >= {"task", "delivered", "skipped", "mistakes", "violations", "rule", "ownership",
+                          "sim_seconds", "wall_seconds"}
+    assert len(first["steps"]) == 20 and first["violations"] == []
+    twin = Ownctl(tmp_path / "twin.db")
+    twin("init")
+    assert without_timing(twin.json("run", "trashAll", "--kinematic", "--seed", "3")) == without_timing(first)
+    again = ownctl.json("run", "trashAll", "--kinematic", "--seed", "3")  # works twice
+    assert again["loaded_world"] is False and again["mistakes"] == 0 and again["delivered"] == []
+
+
+def test_oracle_corrections_are_stored_and_explain_later_decisions(ownctl: Ownctl) -> None:
+    ownctl.json("run", "trashAll", "--kinematic", "--seed", "1")
+    texts = {r["text"] for r in ownctl.json("rules", "list")}
+    assert "forbid trash if ownedBy any" in texts
+    assert any(e["payload"].get("op") == "run.step" for e in ownctl.json("log"))
+    assert ownctl.json("perms", "list")
+
+
+def test_learning_persists_across_layouts(tmp_path: Path) -> None:
+    """A second layout of the same kind of world, keeping what was learned, costs fewer mistakes."""
+    first, second = [], []
+    for seed in range(4):
+        store = Ownctl(tmp_path / f"s{seed}.db")
+        store("init")
+        first.append(store.json("run", "trashAll", "--kinematic", "--seed", str(seed))["mistakes"])
+        later = store.json("run", "trashAll", "--kinematic", "--layout-seed", str(100 + seed))
+        assert later["loaded_world"] is True
+        second.append(later["mistakes"])
+    assert sum(second) < sum(first), (first, second)
+
+
+def test_bad_options_are_refused_before_anything_is_written(ownctl: Ownctl) -> None:
+    before = ownctl.digest()
+    assert "trashall" in ownctl("run", "cleanAll", code=1).stderr.lower()
+    ownctl("run", "trashAll", "--render", "x.gif", code=1)
+    ownctl("run", "trashAll", "--instructor", "teacher", code=1)
+    assert ownctl.digest() == before
+
+
+@pytest.mark.slow
+def test_physics_trash_leaves_the_forbidden_block_in_place(tmp_path: Path, ownctl: Ownctl) -> None:
+    world = tmp_path / "three.toml"
+    world.write_text(SMALL_WORLD)
+    ownctl("world", "load", str(world))
+    ownctl("forbid", "trash", "if", "ownedBy", "any")
+    ownctl("claim", "wallet", "alexis")
+    for name in ("cup", "can"):
+        for agent in ("alexis", "xuan"):
+            ownctl("claim", name, agent, "--not")
+    before = {o["name"]: o for o in ownctl.json("object", "list")}
+    report = ownctl.json("run", "trashAll", "--instructor", "none", "--render", str(tmp_path / "end.png"))
+    after = {o["name"]: o for o in ownctl.json("object", "list")}
+    assert sorted(report["delivered"]) == ["can", "cup"] and report["violations"] == []
+    assert report["sim_seconds"] > 0
+    moved = math.dist(before["wallet"]["position"], after["wallet"]["position"])
+    assert moved < 0.01
+    for name in ("can", "cup"):
+        x, y, _ = after[name]["position"]
+        assert -0.3 <= x <= 0.2 and 0.6 <= y <= 1.1
+    assert (tmp_path / "end.png").stat().st_size > 1000
