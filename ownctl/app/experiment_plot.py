@@ -49,7 +49,8 @@ def write_plot(result: ExperimentResult, path: str | Path) -> None:
         cells = [ours(c) for c in result.conditions]
         means = [c.mean if c is not None else float("nan") for c in cells]
         errs = [c.ci95 if c is not None else 0.0 for c in cells]
-        ax.bar(xs, means, yerr=errs, capsize=4, color="#4c72b0", alpha=0.85, label=f"ours ({result.learner})")
+        ax.bar(xs, means, yerr=errs, capsize=4, color="#4c72b0", alpha=0.85,
+               label=f"ours ({result.learner} learner)")
         published = [paper(c.paper) for c in result.conditions]
         if any(v is not None for v in published):
             ax.scatter([x for x, v in zip(xs, published, strict=True) if v is not None],
