@@ -59,6 +59,7 @@ class Evidence:
         self.worlds = enumerate_worlds(frame, tuple(named), with_other=True)
         self._cache: dict[Literal, np.ndarray] = {}
         self._rules: dict[Rule, np.ndarray] = {}
+        self._stacks: dict[tuple[Literal, ...], np.ndarray] = {}
 
     @property
     def n(self) -> int:
@@ -88,8 +89,14 @@ class Evidence:
         return self._cache[lit]
 
     def literal_stack(self, lits: Sequence[Literal]) -> np.ndarray:
-        """(L, W, n) truth of several literals."""
-        return np.stack([self.literal(x) for x in lits])
+        """(L, W, n) truth of several literals (cached per literal list)."""
+        key = tuple(lits)
+        out = self._stacks.get(key)
+        if out is None:
+            shape = (len(key), len(self.worlds.bits), self.n)
+            out = np.stack([self.literal(x) for x in key]) if key else np.zeros(shape, dtype=bool)
+            self._stacks[key] = out
+        return out
 
     def truth(self, rule: Rule) -> np.ndarray:
         """(W, n) truth of one conjunction (cached)."""

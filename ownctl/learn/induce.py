@@ -29,7 +29,7 @@ import numpy as np
 from ownctl.config import LearnConfig
 from ownctl.learn.algebra import merge_rule, rule_diff
 from ownctl.learn.evidence import Evidence, Vocabulary
-from ownctl.learn.search import rule_search
+from ownctl.learn.search import rule_search, sizes
 from ownctl.logic.rules import Norm, Rule
 
 LABEL_NOISE = 0.003  # the instructor is almost always right about permissions
@@ -71,9 +71,9 @@ class Inducer:
     def _merge(self, rules: Sequence[Rule], new: Rule) -> list[Rule]:
         return merge_rule(rules, new, None if self.ours else self._covers)
 
-    def _search(self, init: Rule, score, threshold: float, filters=()):  # type: ignore[no-untyped-def]
+    def _search(self, init: Rule, score, threshold: float, filters=(), exclude=()):  # type: ignore[no-untyped-def]
         return rule_search(self.ev, init, self.atoms, score, threshold, filters, self.cfg.beam,
-                           self.cfg.max_conditions, stop_at_success=not self.ours)
+                           self.cfg.max_conditions, stop_at_success=not self.ours, exclude=exclude)
 
     def _delta_add(self, rules: Sequence[Rule]):  # type: ignore[no-untyped-def]
         """Ours: score of adding each candidate to ``rules`` (lower is better, < 0 improves)."""
@@ -82,7 +82,7 @@ class Inducer:
 
         def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
             q = self.ev.prob(truths | base_truth[None])
-            size = np.array([len(c.literals) + 1 for c in cands], dtype=float)
+            size = sizes(cands) + 1
             return nll(self.ev, q) - base + LITERAL_PENALTY * size
 
         return score
@@ -92,15 +92,14 @@ class Inducer:
         """Add a rule covering forbid example ``i`` (unless no acceptable rule exists)."""
         neg = ~self.ev.positives
         covers_new = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
-        is_new = lambda tr, c: np.array([r not in rules for r in c])  # noqa: E731
         if self.ours:
-            result = self._search(Rule(self.action), self._delta_add(rules), -1e-9, (covers_new, is_new))
+            result = self._search(Rule(self.action), self._delta_add(rules), -1e-9, (covers_new,), rules)
         else:
             def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
                 return (self.ev.prob(truths)[:, neg] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
 
             thr = max(1.0, self.cfg.example_tolerance * neg.sum())
-            result = self._search(Rule(self.action), score, thr, (covers_new, is_new))
+            result = self._search(Rule(self.action), score, thr, (covers_new,), rules)
         return self._merge(rules, result.rule) if result.success else rules
 
     # -- Algorithm 2 -------------------------------------------------------------------------
@@ -120,7 +119,7 @@ class Inducer:
                 def score(truths: np.ndarray, cands: Sequence[Rule], r=r, rest=rest, r_truth=r_truth,
                           base=base) -> np.ndarray:
                     q = self.ev.prob(rest[None] | (r_truth[None] & ~truths))
-                    extra = np.array([len(c.literals) - len(r.literals) for c in cands], dtype=float)
+                    extra = sizes(cands) - len(r.literals)
                     return nll(self.ev, q) - base + LITERAL_PENALTY * extra
 
                 result = self._search(r, score, -1e-9, (keeps_neg,))
@@ -150,8 +149,7 @@ class Inducer:
         """
         current = list(given)
         for _ in range(max_rules):
-            is_new = lambda tr, c, cur=current: np.array([r not in cur for r in c])  # noqa: E731
-            result = self._search(Rule(self.action), self._delta_add(current), -1e-9, (is_new,))
+            result = self._search(Rule(self.action), self._delta_add(current), -1e-9, (), current)
             if not result.success:
                 break
             current = self._merge(current, result.rule)

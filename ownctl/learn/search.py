@@ -30,6 +30,71 @@ class SearchResult:
     success: bool
 
 
+class Candidates(Sequence[Rule]):
+    """The refinements of one search round, built as rules only when looked at.
+
+    Entry ``k`` is ``parents[pairs[k][0]]`` refined by ``lits[pairs[k][1]]``; every candidate of a
+    round has the same number of literals (``size``).
+    """
+
+    def __init__(
+        self, parents: Sequence[Rule], lits: Sequence[Literal], pairs: list[tuple[int, int]]
+    ) -> None:
+        self.parents, self.lits, self.pairs = parents, lits, pairs
+        self.size = len(parents[0].literals) + 1 if parents else 0
+
+    def __len__(self) -> int:
+        return len(self.pairs)
+
+    def __getitem__(self, k):  # type: ignore[no-untyped-def, override]
+        if isinstance(k, slice):
+            return [self[i] for i in range(*k.indices(len(self)))]
+        parent, lit = self.pairs[k]
+        return self.parents[parent].with_literal(self.lits[lit])
+
+    def select(self, keep: np.ndarray) -> Candidates:
+        """The candidates where ``keep`` is true, in order."""
+        return Candidates(self.parents, self.lits, [p for p, k in zip(self.pairs, keep, strict=True) if k])
+
+
+def sizes(cands: Sequence[Rule]) -> np.ndarray:
+    """Number of literals of each candidate, without building rules when they are Candidates."""
+    if isinstance(cands, Candidates):
+        return np.full(len(cands), cands.size, dtype=float)
+    return np.array([len(c.literals) for c in cands], dtype=float)
+
+
+def _round(ev: Evidence, frontier: list[Rule], lits: list[Literal], exclude: frozenset[Rule]
+           ) -> tuple[Candidates, np.ndarray]:
+    """Every new one-literal refinement of the frontier (no duplicates, none in ``exclude``)."""
+    table = ev.literal_stack(lits)
+    pairs: list[tuple[int, int]] = []
+    blocks: list[np.ndarray] = []
+    seen: set[frozenset[Literal]] = set()
+    shared = len(frontier) > 1
+    for p, rule in enumerate(frontier):
+        used = {lit.atom for lit in rule.literals}
+        js = [j for j, x in enumerate(lits) if x.atom not in used]
+        if shared or exclude:
+            base = rule.conditions
+            keep = []
+            for j in js:
+                key = base | {lits[j]}
+                if key in seen:
+                    continue
+                seen.add(key)
+                if exclude and rule.with_literal(lits[j]) in exclude:
+                    continue
+                keep.append(j)
+            js = keep
+        if not js:
+            continue
+        pairs.extend((p, j) for j in js)
+        blocks.append(ev.truth(rule)[None] & table[js])
+    truths = np.concatenate(blocks) if blocks else np.zeros((0, *ev.worlds.weights.shape), dtype=bool)
+    return Candidates(frontier, lits, pairs), truths
+
+
 def rule_search(
     ev: Evidence,
     init: Rule,
@@ -40,52 +105,43 @@ def rule_search(
     beam: int = 3,
     max_conditions: int = 4,
     stop_at_success: bool = True,
+    exclude: Sequence[Rule] = (),
 ) -> SearchResult:
     """Refine ``init`` literal by literal, keeping the ``beam`` best, until a rule scores <= threshold.
 
     With ``stop_at_success`` (the paper's behaviour) the first acceptable rule ends the search, which
     keeps rules general; otherwise the search runs to ``max_conditions`` and returns the best rule.
+    Rules in ``exclude`` are never candidates (the paper's "not already in the rule set" filter).
     """
+    banned = frozenset(exclude)
+    lits = [x for a in atoms for x in (a, a.negate())]
     truth0 = ev.truth(init)[None]
     best, best_score = init, float(score(truth0, [init])[0])
-    ok = all(bool(f(truth0, [init])[0]) for f in filters)
+    ok = init not in banned and all(bool(f(truth0, [init])[0]) for f in filters)
     success = ok and best_score <= threshold
     frontier = [init]
     depth = len(init.literals)
     while frontier and depth < max_conditions:
         if success and stop_at_success:
             break
-        seen: set[Rule] = set()
-        candidates: list[Rule] = []
-        blocks: list[np.ndarray] = []
-        for rule in frontier:
-            used = {lit.atom for lit in rule.literals}
-            lits = [x for a in atoms if a.atom not in used for x in (a, a.negate())]
-            fresh = [(rule.with_literal(x), x) for x in lits]
-            fresh = [(c, x) for c, x in fresh if c not in seen]
-            if not fresh:
-                continue
-            seen.update(c for c, _ in fresh)
-            candidates.extend(c for c, _ in fresh)
-            blocks.append(ev.truth(rule)[None] & ev.literal_stack([x for _, x in fresh]))
+        candidates, truths = _round(ev, frontier, lits, banned)
         depth += 1
-        if not candidates:
+        if not len(candidates):
             break
-        truths = np.concatenate(blocks)
         keep = np.ones(len(candidates), dtype=bool)
         for f in filters:
             keep &= f(truths, candidates)
         if not keep.any():
             break
-        candidates = [c for c, k in zip(candidates, keep, strict=True) if k]
-        truths = truths[keep]
+        if not keep.all():
+            candidates, truths = candidates.select(keep), truths[keep]
         scores = np.asarray(score(truths, candidates), dtype=float)
         order = np.argsort(scores, kind="stable")
-        frontier = [candidates[i] for i in order[:beam]]
+        frontier = [candidates[int(i)] for i in order[:beam]]
         top = float(scores[order[0]])
         if top < best_score - 1e-12:
-            best, best_score = candidates[order[0]], top
+            best, best_score = frontier[0], top
             success = best_score <= threshold
-        elif not success and ok is False and top <= best_score + 1e-12 and top <= threshold:
-            best, best_score, success = candidates[order[0]], top, True
+        elif not success and not ok and top <= best_score + 1e-12 and top <= threshold:
+            best, best_score, success = frontier[0], top, True
     return SearchResult(best, best_score, success)

@@ -24,13 +24,32 @@ _SPACE = re.compile(r"[ \t\r\n]+")
 SIGNS = ("forbid", "allow")
 
 
-@dataclass(frozen=True, order=False)
+@dataclass(frozen=True, order=False, eq=False)
 class Literal:
     """``[not] pred arg`` about the rule's target object, e.g. ``not isColored red``."""
 
     pred: str
     arg: str
     negated: bool = False
+
+    def __post_init__(self) -> None:
+        # literals are hashed and sorted millions of times during rule search: compute once
+        object.__setattr__(self, "_hash", hash((self.pred, self.arg, self.negated)))
+        object.__setattr__(self, "_key", (PREDICATES[self.pred].order if self.pred in PREDICATES else 99,
+                                          self.arg != ANY, self.arg, self.negated))
+
+    def __hash__(self) -> int:
+        return self._hash  # type: ignore[attr-defined, no-any-return]
+
+    def __eq__(self, other: object) -> bool:
+        if self is other:
+            return True
+        if not isinstance(other, Literal):
+            return NotImplemented
+        return self._key == other._key and self.pred == other.pred  # type: ignore[attr-defined]
+
+    def __reduce__(self) -> tuple[type, tuple[str, str, bool]]:
+        return (Literal, (self.pred, self.arg, self.negated))  # the cached hash is per process
 
     @property
     def atom(self) -> tuple[str, str]:
@@ -41,9 +60,9 @@ class Literal:
         """The complementary literal."""
         return Literal(self.pred, self.arg, not self.negated)
 
-    def sort_key(self) -> tuple[int, int, str, bool]:
+    def sort_key(self) -> tuple[int, bool, str, bool]:
         """Canonical order: vocabulary order, ``any`` first, then argument, positive first."""
-        return (PREDICATES[self.pred].order, self.arg != ANY, self.arg, self.negated)
+        return self._key  # type: ignore[attr-defined, no-any-return]
 
     def text(self) -> str:
         """Canonical text of the literal."""
@@ -64,6 +83,13 @@ class Rule:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "literals", canonical(self.literals))
+        object.__setattr__(self, "_hash", hash((self.action, self.literals)))
+
+    def __hash__(self) -> int:
+        return self._hash  # type: ignore[attr-defined, no-any-return]
+
+    def __reduce__(self) -> tuple[type, tuple[str, tuple[Literal, ...]]]:
+        return (Rule, (self.action, self.literals))  # the cached hash is per process
 
     @property
     def conditions(self) -> frozenset[Literal]:
@@ -71,8 +97,22 @@ class Rule:
         return frozenset(self.literals)
 
     def with_literal(self, lit: Literal) -> Rule:
-        """This rule refined by one more literal."""
-        return Rule(self.action, (*self.literals, lit))
+        """This rule refined by one more literal (kept canonical without a full sort)."""
+        if lit in self.literals:
+            return self
+        key = lit._key  # type: ignore[attr-defined]
+        lits = self.literals
+        at = len(lits)
+        for i, x in enumerate(lits):
+            if x._key > key:  # type: ignore[attr-defined]
+                at = i
+                break
+        out = object.__new__(Rule)
+        merged = (*lits[:at], lit, *lits[at:])
+        object.__setattr__(out, "action", self.action)
+        object.__setattr__(out, "literals", merged)
+        object.__setattr__(out, "_hash", hash((self.action, merged)))
+        return out
 
     def is_contradictory(self) -> bool:
         """True if the rule holds a literal and its negation (it can never fire)."""
