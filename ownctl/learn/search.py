@@ -66,27 +66,28 @@ def sizes(cands: Sequence[Rule]) -> np.ndarray:
 
 def _round(ev: Evidence, frontier: list[Rule], lits: list[Literal], exclude: frozenset[Rule]
            ) -> tuple[Candidates, np.ndarray]:
-    """Every new one-literal refinement of the frontier (no duplicates, none in ``exclude``)."""
+    """Every new one-literal refinement of the frontier (no duplicates, none in ``exclude``).
+
+    A refinement ``parent and x`` repeats an earlier parent's refinement exactly when that parent
+    differs from this one by one literal each way, and it is excluded exactly when an excluded rule
+    is this parent plus ``x``; both are found with a few set operations per parent.
+    """
     table = ev.literal_stack(lits)
+    banned = [r.conditions for r in exclude]
     pairs: list[tuple[int, int]] = []
     blocks: list[np.ndarray] = []
-    seen: set[frozenset[Literal]] = set()
-    shared = len(frontier) > 1
     for p, rule in enumerate(frontier):
+        base = rule.conditions
         used = {lit.atom for lit in rule.literals}
-        js = [j for j, x in enumerate(lits) if x.atom not in used]
-        if shared or exclude:
-            base = rule.conditions
-            keep = []
-            for j in js:
-                key = base | {lits[j]}
-                if key in seen:
-                    continue
-                seen.add(key)
-                if exclude and rule.with_literal(lits[j]) in exclude:
-                    continue
-                keep.append(j)
-            js = keep
+        skip: set[Literal] = set()
+        for other in [q.conditions for q in frontier[:p]]:  # same size: one literal differs each way
+            extra = other - base
+            if len(extra) == 1 and len(base - other) == 1:
+                skip |= extra
+        for other in banned:  # one literal more than this parent, and containing it
+            if len(other) == len(base) + 1 and base <= other:
+                skip |= other - base
+        js = [j for j, x in enumerate(lits) if x.atom not in used and x not in skip]
         if not js:
             continue
         pairs.extend((p, j) for j in js)
