@@ -3,6 +3,9 @@
 :class:`AppContext` opens the store lazily (so commands that fail before touching it cost nothing)
 and hands out transactions. A *write* transaction appends the instruction to the event log first,
 inside the same transaction, so a failing command leaves neither its changes nor its log line.
+Transactions are re-entrant: while a write transaction is open on a context, ``write`` and ``read``
+yield that same transaction (a nested ``write`` logs its sub-instruction into it), so a use case
+made of others (``say``: a claim, a permission and a norm) commits or rolls back as one.
 The CLI builds one context per process (``batch`` reuses it line after line) and passes ``now``
 explicitly: nothing here reads the environment or the clock.
 """
@@ -42,6 +45,7 @@ class AppContext:
     command: str = ""
     actor: str | None = None
     _store: Store | None = field(default=None, repr=False)
+    _open: Tx | None = field(default=None, repr=False)  # the write transaction in progress, if any
 
     def store(self, create: bool = False) -> Store:
         """The open store (opened on first call; ``create`` allows creating an explicit store)."""
@@ -53,16 +57,33 @@ class AppContext:
 
     @contextmanager
     def read(self) -> Iterator[Tx]:
-        """A read-only transaction."""
+        """A read-only transaction (inside an open write transaction: that one, to see its changes)."""
+        if self._open is not None:
+            yield self._open
+            return
         with self.store().transaction(write=False) as tx:
             yield tx
 
     @contextmanager
-    def write(self, payload: dict[str, Any], actor: str | None = None) -> Iterator[Tx]:
-        """A write transaction whose first act is logging this instruction with ``payload``."""
+    def write(self, payload: dict[str, Any] | None, actor: str | None = None) -> Iterator[Tx]:
+        """A write transaction whose first act is logging this instruction with ``payload``.
+
+        ``payload`` None writes without logging (conversation state, which is not an instruction).
+        Inside an open write transaction this yields the same one, after logging into it.
+        """
+        if self._open is not None:
+            if payload is not None:
+                self._open.log(self.now, actor or self.actor, self.interface, self.command, payload)
+            yield self._open
+            return
         with self.store().transaction(write=True) as tx:
-            tx.log(self.now, actor or self.actor, self.interface, self.command, payload)
-            yield tx
+            if payload is not None:
+                tx.log(self.now, actor or self.actor, self.interface, self.command, payload)
+            self._open = tx
+            try:
+                yield tx
+            finally:
+                self._open = None
 
     def close(self) -> None:
         """Close the store if it was opened."""

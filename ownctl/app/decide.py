@@ -6,6 +6,10 @@ least 0.5), else the step's rules (forbidden iff P(some rule holds) >= the step'
 Object-targeted steps are always checked; target-less ones (release, goHome, ...) only when they
 have a permission or rules. The action is forbidden iff some step is; its ``p_forbidden`` is the
 maximum over the steps. Probabilities use the decision beliefs (posteriors).
+
+A check is also a turn of the conversation: it makes the object the current target and the action
+the current action ("No, that's mine!" then refers to them), and a forbidden answer becomes the
+last refusal ("Why not?").
 """
 
 from __future__ import annotations
@@ -78,8 +82,20 @@ def _reason(name: str, obj: str, step: dict[str, Any]) -> str:
     return f"no permission or rule speaks about {name} on {obj}"
 
 
-def check(ctx: AppContext, action: str, obj: str) -> CheckReport:
-    """Decide ``action`` on ``obj``; see the module docstring."""
+def remember(ctx: AppContext, report: CheckReport) -> None:
+    """Record a check in the conversation: current target and action, and a refusal if forbidden."""
+    data = report.data
+    turn: dict[str, Any] = {"target": data["object"], "action": data["action"]}
+    if report.forbidden:
+        steps = [s["action"] for s in data["steps"] if s["decision"] == "forbidden"]
+        turn["refusal"] = {"action": data["action"], "object": data["object"], "steps": steps,
+                           "reason": report.reason, "at": ctx.now}
+    with ctx.write(None) as tx:
+        tx.converse(**turn)
+
+
+def check(ctx: AppContext, action: str, obj: str, record: bool = True) -> CheckReport:
+    """Decide ``action`` on ``obj``; see the module docstring (``record``: remember it as a turn)."""
     act = check_action(action)
     with ctx.read() as tx:
         row = tx.object(obj)
@@ -123,4 +139,7 @@ def check(ctx: AppContext, action: str, obj: str) -> CheckReport:
             for j, a in enumerate(snap.agents)
         ],
     }
-    return CheckReport(data, reason)
+    report = CheckReport(data, reason)
+    if record:
+        remember(ctx, report)
+    return report

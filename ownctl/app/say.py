@@ -1,0 +1,292 @@
+"""``say UTTERANCE --as AGENT [--about OBJ]``: one utterance, understood and applied as one transaction.
+
+The utterance is understood (:func:`ownctl.language.understand`) in the store's conversation
+context: "me" is ``--as`` (else the stored current speaker), "this"/"that" is ``--about`` (else the
+stored current target), "do that" / "No, that's mine!" is the current action (of the last check,
+refusal or run step). Its instructions then run in order inside ONE write transaction, by the same
+use cases as the CLI instructions (claims, permissions and norms with their learning; agents), so a
+failure anywhere writes nothing. Questions are answered inside that transaction, so they see what
+the utterance just taught: ``owners``, ``check`` (a forbidden answer is the refusal "why not?"
+refers to) and ``explain``. ``skip`` is recorded (no robot is acting in a plain ``say``). A task
+("Clear the table") runs after the transaction commits, with its own transaction per object as
+every run does. Finally the context is updated: speaker, target, action.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+from ownctl.app.context import AppContext
+from ownctl.errors import OwnctlError
+from ownctl.language import (
+    AskOwner,
+    AskPermitted,
+    AskWhy,
+    Claim,
+    Context,
+    Instruction,
+    Introduce,
+    MissingContext,
+    NormInstruction,
+    Permission,
+    RunTask,
+    Skip,
+    Understanding,
+    understand,
+)
+from ownctl.language.lexicon import COLORS
+
+
+@dataclass
+class SayReport:
+    """What was understood and done; ``data`` is the ``--json`` document."""
+
+    utterance: str
+    understood: Understanding
+    speaker: str | None
+    target: str | None
+    results: list[dict[str, Any]] = field(default_factory=list)
+    answers: list[str] = field(default_factory=list)
+    forbidden: bool = False  # a question "may you ...?" was answered no (exit 3, like check)
+    run: Any = None  # the RunReport of a task, if the utterance asked for one
+
+    @property
+    def reply(self) -> str:
+        """The robot's answer: the parser's acknowledgement, then the answers to questions."""
+        return " ".join(filter(None, [self.understood.reply, *self.answers]))
+
+    @property
+    def data(self) -> dict[str, Any]:
+        """``{"utterance", "intent", "instructions", "reply", "results", ...}``."""
+        return {
+            "utterance": self.utterance,
+            "intent": self.understood.intent,
+            "instructions": list(self.understood.texts()),
+            "reply": self.reply,
+            "results": self.results,
+            "speaker": self.speaker,
+            "target": self.target,
+            "forbidden": self.forbidden,
+        }
+
+
+def language_context(ctx: AppContext, speaker: str | None, about: str | None) -> Context:
+    """The parser's context: names from the store, speaker/target/action from the conversation."""
+    with ctx.read() as tx:
+        talk = tx.conversation()
+        if about is not None:
+            tx.object(about)  # an unknown --about is an error naming the known objects
+        objects = tx.objects()
+        return Context(
+            speaker=speaker if speaker is not None else talk.speaker,
+            about=about if about is not None else talk.target,
+            action=talk.action,
+            agents=frozenset(a.name for a in tx.agents()),
+            objects=frozenset(o.name for o in objects),
+            colors=COLORS | {o.color for o in objects if o.color},
+            areas=frozenset(a.name for a in tx.areas()),
+            categories=frozenset(c for cats in tx.categories().values() for c in cats),
+        )
+
+
+def _owners_answer(data: dict[str, Any]) -> str:
+    likely = [o for o in data["owners"] if o["p"] >= 0.5]
+    if likely:
+        parts = ", ".join(f"{o['agent']} (p={o['p']:.2g}, from {o['source']})" for o in likely)
+        return f"{data['object']} belongs to {parts}."
+    top = data["owners"][0] if data["owners"] else None
+    best = f"; the likeliest is {top['agent']} with p={top['p']:.2g}" if top else ""
+    return f"I think nobody owns {data['object']}{best}."
+
+
+def _check_answer(data: dict[str, Any], reason: str) -> str:
+    from ownctl.language.instructions import verb
+
+    if data["decision"] == "forbidden":
+        return f"Sorry, I may not {verb(data['action'])} {data['object']}: {reason}."
+    return f"Yes, I may {verb(data['action'])} {data['object']}."
+
+
+def _why(ctx: AppContext, ins: AskWhy) -> dict[str, Any]:
+    from ownctl.app.explain import explain
+
+    action, obj = ins.action, ins.object
+    if action is None or obj is None:
+        with ctx.read() as tx:
+            refusal = tx.conversation().refusal
+        if not refusal:
+            raise MissingContext(
+                "why not what? nothing was refused yet; ask about an action "
+                "(\"Why can't you throw this away?\") or run: ownctl explain ACTION OBJECT"
+            )
+        action, obj = refusal["action"], refusal["object"]
+    return explain(ctx, action, obj).data
+
+
+class _Turn:
+    """Applies one utterance's instructions in order, tracking who speaks and what was named."""
+
+    def __init__(self, ctx: AppContext, report: SayReport) -> None:
+        self.ctx, self.report = ctx, report
+        self.action: str | None = None
+        self.tasks: list[RunTask] = []
+
+    def apply(self, ins: Instruction) -> dict[str, Any]:
+        handler: Callable[[Any], tuple[str, dict[str, Any]]] = getattr(self, "_" + type(ins).__name__.lower())
+        message, data = handler(ins)
+        return {"instruction": ins.text(), "message": message, "data": data}
+
+    def _claim(self, ins: Claim) -> tuple[str, dict[str, Any]]:
+        from ownctl.app.instruct import add_claim
+
+        self.report.target = ins.object
+        done = add_claim(self.ctx, ins.object, ins.agent, ins.p, ins.negated, ins.exclusive,
+                         self.report.speaker)
+        return done.message, done.data
+
+    def _permission(self, ins: Permission) -> tuple[str, dict[str, Any]]:
+        from ownctl.app.instruct import add_permission
+
+        self.report.target, self.action = ins.object, ins.action
+        done = add_permission(self.ctx, ins.action, ins.object, 1.0 if ins.forbid else 0.0,
+                              self.report.speaker)
+        return done.message, done.data
+
+    def _norminstruction(self, ins: NormInstruction) -> tuple[str, dict[str, Any]]:
+        from ownctl.app.instruct import add_norm
+
+        done = add_norm(self.ctx, ins.norm.text(), self.report.speaker)
+        return done.message, done.data
+
+    def _introduce(self, ins: Introduce) -> tuple[str, dict[str, Any]]:
+        from ownctl.app.things import add_agent
+
+        with self.ctx.read() as tx:
+            known = ins.agent in {a.name for a in tx.agents()}
+        self.report.speaker = ins.agent
+        if known:
+            return f"{ins.agent} is speaking", {"agent": ins.agent, "added": False}
+        done = add_agent(self.ctx, ins.agent)
+        return f"{done.message}; {ins.agent} is speaking", {**done.data, "added": True}
+
+    def _skip(self, ins: Skip) -> tuple[str, dict[str, Any]]:
+        self.report.target = ins.object
+        with self.ctx.write({"op": "skip", "object": ins.object}, actor=self.report.speaker) as tx:
+            tx.object(ins.object)
+        return f"noted: stop acting on {ins.object} (no robot is acting now)", {"object": ins.object}
+
+    def _askowner(self, ins: AskOwner) -> tuple[str, dict[str, Any]]:
+        from ownctl.app.query import owners
+
+        self.report.target = ins.object
+        data = owners(self.ctx, ins.object)
+        answer = _owners_answer(data)
+        self.report.answers.append(answer)
+        return answer, data
+
+    def _askpermitted(self, ins: AskPermitted) -> tuple[str, dict[str, Any]]:
+        from ownctl.app.decide import check
+
+        self.report.target, self.action = ins.object, ins.action
+        result = check(self.ctx, ins.action, ins.object)
+        answer = _check_answer(result.data, result.reason)
+        self.report.forbidden = self.report.forbidden or result.forbidden
+        self.report.answers.append(answer)
+        return answer, result.data
+
+    _request = _askpermitted
+
+    def _askwhy(self, ins: AskWhy) -> tuple[str, dict[str, Any]]:
+        data = _why(self.ctx, ins)
+        self.report.answers.append(data["text"])
+        return data["text"], data
+
+    def _runtask(self, ins: RunTask) -> tuple[str, dict[str, Any]]:
+        self.tasks.append(ins)
+        return f"{ins.task} starts once this utterance is stored", {"task": ins.task}  # then: its report
+
+
+def order(instructions: tuple[Instruction, ...]) -> list[tuple[int, Instruction]]:
+    """The order instructions are applied in: as understood, except that in a run of permissions and
+    norms the norms go first, so a norm given in the same breath explains its example ("No, that's
+    mine!": the norm ``forbid trash if ownedBy me`` is stored before ``forbid trash on that``, and the
+    example then agrees with it instead of inducing an "always forbid" rule from one example)."""
+    out: list[tuple[int, Instruction]] = []
+    run: list[tuple[int, Instruction]] = []
+    for item in [*enumerate(instructions), (len(instructions), None)]:
+        if isinstance(item[1], Permission | NormInstruction):
+            run.append(item)  # type: ignore[arg-type]
+            continue
+        out += [x for x in run if isinstance(x[1], NormInstruction)]
+        out += [x for x in run if isinstance(x[1], Permission)]
+        run = []
+        if item[1] is not None:
+            out.append(item)  # type: ignore[arg-type]
+    return out
+
+
+def run_function() -> Callable[..., Any]:
+    """The task runner of :mod:`ownctl.app.run`; an OwnctlError if it is not installed."""
+    try:
+        from ownctl.app import run as runner
+    except ImportError as exc:
+        raise OwnctlError(f"running tasks needs ownctl.app.run, which is not available ({exc})") from None
+    for name in ("run_task", "run"):  # the app-level runner, not the task loop it imports
+        found = getattr(runner, name, None)
+        if callable(found) and getattr(found, "__module__", "") == runner.__name__:
+            return found  # type: ignore[no-any-return]
+    raise OwnctlError("running tasks needs ownctl.app.run.run_task, which is not available")
+
+
+def say(
+    ctx: AppContext,
+    utterance: str,
+    speaker: str | None = None,
+    about: str | None = None,
+    physics: bool = False,
+    instructor: str = "none",
+) -> SayReport:
+    """Understand ``utterance`` and apply it (see the module docstring). ``physics`` and
+    ``instructor`` are for a task the utterance asks for ("Clear the table")."""
+    lctx = language_context(ctx, speaker, about)
+    understood = understand(utterance, lctx)
+    report = SayReport(utterance, understood, lctx.speaker, lctx.about)
+    turn = _Turn(ctx, report)
+    payload = {"op": "say", "utterance": utterance, "speaker": lctx.speaker, "about": lctx.about,
+               "instructions": list(understood.texts())}
+    saved = ctx.interface, ctx.command
+    try:
+        with ctx.write(payload, actor=lctx.speaker) as tx:
+            ctx.interface = "say"
+            done: dict[int, dict[str, Any]] = {}
+            for i, ins in order(understood.instructions):
+                ctx.command = ins.text()
+                done[i] = turn.apply(ins)
+            report.results = [done[i] for i in sorted(done)]  # shown in the order understood
+            if report.speaker is not None:
+                tx.agent(report.speaker)  # an unknown --as is an error naming the known agents
+            action = turn.action if turn.action is not None else lctx.action
+            tx.converse(speaker=report.speaker, target=report.target, action=action)
+    finally:
+        ctx.interface, ctx.command = saved
+    for task in turn.tasks:
+        report.run = run_function()(ctx, task.task, physics=physics, instructor=instructor)
+        data = report.run.as_json()
+        entry = next(r for r in report.results
+                     if r["instruction"] == task.text() and "delivered" not in r["data"])
+        entry.update(message=_run_summary(data), data=data)
+        report.answers.append(_run_summary(data))
+        action = "trash" if task.task == "trashAll" else "collect"
+        with ctx.write(None) as tx:
+            tx.converse(action=action)
+    return report
+
+
+def _run_summary(data: dict[str, Any]) -> str:
+    return (f"Done with {data['task']}: {len(data['delivered'])} moved, {len(data['skipped'])} left, "
+            f"{data['mistakes']} mistakes.")
+
+
+__all__ = ["SayReport", "language_context", "run_function", "say"]

@@ -1,0 +1,69 @@
+"""Talking to the robot: ``say UTTERANCE`` and ``explain ACTION OBJ``."""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit
+
+EXIT_FORBIDDEN = 3
+
+
+def say(
+    ctx: typer.Context,
+    utterance: Annotated[str, typer.Argument(help='What is said, e.g. "No Baxter, that\'s mine!".')],
+    speaker: Annotated[
+        str | None, typer.Option("--as", metavar="AGENT", help="Who says it (default: the current speaker).")
+    ] = None,
+    about: Annotated[
+        str | None,
+        typer.Option(
+            "--about", metavar="OBJECT", help='What "this"/"that" is (default: the current target).'
+        ),
+    ] = None,
+    physics: Annotated[
+        bool, typer.Option("--physics", help="A task the utterance asks for runs in MuJoCo (else kinematic).")
+    ] = False,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Say something to the robot: it is understood, applied in one transaction, and answered.
+
+    Prints the instructions understood (as ownctl commands) and the robot's reply. A question
+    "Can you ...?" answered no exits 3, like check. Examples:
+    ownctl say "No Baxter, that's mine!" --as xuan --about mug;  ownctl say "Why not?"
+    """
+    from ownctl.app import say as talk
+
+    report = talk.say(app_ctx(ctx), utterance, speaker, about, physics=physics)
+
+    def human() -> None:
+        for result in report.results:
+            typer.echo(f"  {result['instruction']:<40} {result['message']}")
+        typer.echo(f"{'robot'}: {report.reply}")
+
+    emit(report.data, json_out, quiet, human)
+    if report.forbidden:
+        raise typer.Exit(EXIT_FORBIDDEN)
+
+
+def explain(
+    ctx: typer.Context,
+    action: Annotated[
+        str,
+        typer.Argument(
+            help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
+        ),
+    ],
+    obj: Annotated[str, typer.Argument(help="The object.")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Why ACTION is forbidden or permitted on OBJECT: the deciding permission or rules, and where
+    each ownership belief they read comes from (claim, prediction, inference)."""
+    from ownctl.app.explain import explain as why
+
+    result = why(app_ctx(ctx), action, obj)
+    emit(result.data, json_out, quiet, result.text)
