@@ -151,52 +151,61 @@ def _relevant_agents(data: dict[str, Any], agents: list[str]) -> list[str]:
     return [a for a in agents if a in named]
 
 
+def _atoms(tx: Any, row: Any) -> list[dict[str, Any]]:
+    """Every agent's ownership atom for the object: the decision belief and where it comes from."""
+    from ownctl.app.beliefs import decision_belief
+
+    agents = {a.id: a.name for a in tx.agents()}
+    claims: dict[int, int] = {}
+    for b in tx.ownership():
+        if b.claim_p is not None:
+            claims[b.agent_id] = claims.get(b.agent_id, 0) + 1
+    atoms: list[dict[str, Any]] = []
+    for b in tx.ownership(object_id=row.id):
+        p, source = decision_belief(b)
+        atoms.append({
+            "agent": agents[b.agent_id], "p": p, "source": source, "because": _belief_origin(b, claims)[0],
+            "claim": None if b.claim_p is None else {
+                "p": b.claim_p, "speaker": b.claim_speaker, "time": b.claim_time, "trust": b.claim_trust},
+            "prior": None if b.prior_p is None else {"p": b.prior_p, "source": b.prior_source},
+            "posterior": None if b.posterior_p is None else {"p": b.posterior_p},
+        })
+    return atoms
+
+
+def _steps(tx: Any, row: Any, steps: list[dict[str, Any]], own: dict[str, float]) -> list[dict[str, Any]]:
+    """The check's steps with each rule's origin and literal values, and each permission's row."""
+    categories = tx.categories().get(row.id, set())
+    areas = {a.name: a for a in tx.areas()}
+    rule_rows = {r.id: r for r in tx.rules()}
+    perms = {p.action: p for p in tx.permissions(row.id)}
+    out = []
+    for step in steps:
+        step = dict(step)
+        step["rules"] = [
+            {**r, "origin": _rule_origin(rule_rows[r["id"]]),
+             "literals": [f"{lit.text()} {_literal_value(lit, row, categories, own, areas)}"
+                          for lit in parse_rule(r["text"]).literals]}
+            for r in step["rules"]
+        ]
+        perm = perms.get(step["action"])
+        step["permission_row"] = None if perm is None else {
+            "id": perm.id, "value": perm.value, "speaker": perm.speaker, "time": perm.time,
+            "text": f"{'forbid' if perm.value >= 0.5 else 'allow'} {perm.action} on {row.name}"}
+        out.append(step)
+    return out
+
+
 def explain(ctx: AppContext, action: str, obj: str) -> Explanation:
     """Why ``action`` is forbidden or permitted on ``obj``: the deciding permission or rules, and the
     ownership atoms they read with their provenance (see the module docstring)."""
-    from ownctl.app.beliefs import decision_belief
     from ownctl.app.decide import check
 
-    report = check(ctx, action, obj, record=False)
-    data = dict(report.data)
+    data = dict(check(ctx, action, obj, record=False).data)
     with ctx.read() as tx:
         row = tx.object(obj)
-        agents = {a.id: a.name for a in tx.agents()}
-        claims: dict[int, int] = {}
-        for b in tx.ownership():
-            if b.claim_p is not None:
-                claims[b.agent_id] = claims.get(b.agent_id, 0) + 1
-        atoms = []
-        for b in tx.ownership(object_id=row.id):
-            p, source = decision_belief(b)
-            because, _ = _belief_origin(b, claims)
-            atoms.append({
-                "agent": agents[b.agent_id], "p": p, "source": source, "because": because,
-                "claim": None if b.claim_p is None else {
-                    "p": b.claim_p, "speaker": b.claim_speaker, "time": b.claim_time, "trust": b.claim_trust},
-                "prior": None if b.prior_p is None else {"p": b.prior_p, "source": b.prior_source},
-                "posterior": None if b.posterior_p is None else {"p": b.posterior_p},
-            })
-        own = {a["agent"]: a["p"] for a in atoms}
-        categories = tx.categories().get(row.id, set())
-        areas = {a.name: a for a in tx.areas()}
-        rule_rows = {r.id: r for r in tx.rules()}
-        perms = {p.action: p for p in tx.permissions(row.id)}
-        steps = []
-        for step in data["steps"]:
-            step = dict(step)
-            step["rules"] = [
-                {**r, "origin": _rule_origin(rule_rows[r["id"]]),
-                 "literals": [f"{lit.text()} {_literal_value(lit, row, categories, own, areas)}"
-                              for lit in parse_rule(r["text"]).literals]}
-                for r in step["rules"]
-            ]
-            perm = perms.get(step["action"])
-            step["permission_row"] = None if perm is None else {
-                "id": perm.id, "value": perm.value, "speaker": perm.speaker, "time": perm.time,
-                "text": f"{'forbid' if perm.value >= 0.5 else 'allow'} {perm.action} on {obj}"}
-            steps.append(step)
-    data["steps"] = steps
+        atoms = _atoms(tx, row)
+        data["steps"] = _steps(tx, row, data["steps"], {a["agent"]: a["p"] for a in atoms})
     relevant = _relevant_agents(data, [a["agent"] for a in atoms])
     for atom in atoms:
         atom["relevant"] = atom["agent"] in relevant

@@ -17,6 +17,7 @@ from ownctl.cli.batch import batch
 from ownctl.cli.common import OwnctlGroup, State, clock, command_text
 from ownctl.cli.experiment_cmd import experiment_app
 from ownctl.cli.run_cmd import run as run_task
+from ownctl.cli.scenario_cmd import scenario
 
 app = typer.Typer(
     cls=OwnctlGroup,
@@ -84,6 +85,7 @@ app.command("enable")(admin.enable)
 app.command("batch")(batch)
 app.command("say")(say_cmd.say)
 app.command("explain")(say_cmd.explain)
+app.add_typer(scenario, name="scenario")
 app.command("run")(run_task)
 app.add_typer(experiment_app, name="experiment")
 
