@@ -250,6 +250,8 @@ def say(
 ) -> SayReport:
     """Understand ``utterance`` and apply it (see the module docstring). ``physics`` and
     ``instructor`` are for a task the utterance asks for ("Clear the table")."""
+    from ownctl.experiment.task import get_task
+
     lctx = language_context(ctx, speaker, about)
     understood = understand(utterance, lctx)
     report = SayReport(utterance, understood, lctx.speaker, lctx.about)
@@ -278,9 +280,8 @@ def say(
                      if r["instruction"] == task.text() and "delivered" not in r["data"])
         entry.update(message=_run_summary(data), data=data)
         report.answers.append(_run_summary(data))
-        action = "trash" if task.task == "trashAll" else "collect"
         with ctx.write(None) as tx:
-            tx.converse(action=action)
+            tx.converse(action=get_task(task.task).action)
     return report
 
 
@@ -289,4 +290,4 @@ def _run_summary(data: dict[str, Any]) -> str:
             f"{data['mistakes']} mistakes.")
 
 
-__all__ = ["SayReport", "language_context", "run_function", "say"]
+__all__ = ["SayReport", "language_context", "order", "run_function", "say"]

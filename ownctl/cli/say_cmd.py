@@ -9,6 +9,7 @@ import typer
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit
 
 EXIT_FORBIDDEN = 3
+EXIT_STEP_FAILED = 4
 
 
 def say(
@@ -31,10 +32,10 @@ def say(
 ) -> None:
     """Say something to the robot: it is understood, applied in one transaction, and answered.
 
-    Prints the instructions understood (as ownctl commands) and the robot's reply. A question
-    "Can you ...?" answered no exits 3, like check. Examples:
-    ownctl say "No Baxter, that's mine!" --as xuan --about mug;  ownctl say "Why not?"
-    """
+    Prints the instructions understood (as ownctl commands) and the robot's reply. A question "Can you ...?" answered no exits 3, like check; a task whose physics failed exits 4.
+
+    Examples: ownctl say "No Baxter, that's mine!" --as xuan --about mug;  ownctl say "Why not?"
+    """  # noqa: E501
     from ownctl.app import say as talk
 
     report = talk.say(app_ctx(ctx), utterance, speaker, about, physics=physics)
@@ -45,6 +46,8 @@ def say(
         typer.echo(f"{'robot'}: {report.reply}")
 
     emit(report.data, json_out, quiet, human)
+    if report.run is not None and not report.run.ok:
+        raise typer.Exit(EXIT_STEP_FAILED)
     if report.forbidden:
         raise typer.Exit(EXIT_FORBIDDEN)
 

@@ -79,7 +79,7 @@ def _show_step(result: Any) -> None:
 @scenario.command("play")
 def play(
     ctx: typer.Context,
-    file: Annotated[str, typer.Argument(help="The scenario (TOML with [[steps]]).")],
+    file: Annotated[str, typer.Argument(help="The scenario: a TOML world file with steps.")],
     physics: Annotated[
         bool, typer.Option("--physics", help="Run tasks in MuJoCo (default: kinematically, instantly).")
     ] = False,
@@ -95,9 +95,8 @@ def play(
 ) -> None:
     """Play a scenario: load its world, play its steps, check every expectation; exit 4 if one fails.
 
-    Plays on a temporary store unless --db is given (here or before the command; OWNCTL_DB alone is
-    not used, so a scenario never writes into the everyday store by accident).
-    """
+    Plays on a temporary store unless --db is given, here or before the command (OWNCTL_DB alone is not used, so a scenario never writes into the everyday store by accident).
+    """  # noqa: E501
     from ownctl.app.scenario import play_file
 
     state = ctx.find_root().obj

@@ -209,3 +209,14 @@ def test_a_scenario_plays_in_physics(tmp_path: Path) -> None:
     data = json.loads(play(str(SCENARIOS / "demo4-shared-desk.toml"), "--physics", "--json").stdout)
     assert data["passed"], data["steps"][-1]
     assert data["steps"][-1]["result"]["sim_seconds"] > 0
+
+
+def test_ownctl_db_alone_does_not_pick_the_store_but_db_does(tmp_path: Path, ownctl: Ownctl) -> None:
+    path = _scenario(tmp_path, '\n[[steps]]\nsay = "That\'s mine"\nas = "xuan"\nabout = "mug"\n')
+    before = ownctl.digest()
+    env = {"OWNCTL_NOW": NOW, "OWNCTL_DB": ownctl.url}
+    result = invoke(CliRunner(), ["scenario", "play", path, "--json"], None, env)
+    assert result.exit_code == 0 and json.loads(result.stdout)["store"] is None
+    assert ownctl.digest() == before
+    result = invoke(CliRunner(), ["scenario", "play", path, "--db", ownctl.url, "-q"], None, env)
+    assert result.exit_code == 0 and ownctl.json("claims", "list")[0]["object"] == "mug"
