@@ -93,14 +93,22 @@ def _evidence(tx: Tx, action: str, now: float) -> tuple[Evidence, list[int], Any
 
 
 def _save_rules(
-    tx: Tx, action: str, rules: Sequence[Rule], ev: Evidence, names: list[str], now: float
+    tx: Tx, action: str, rules: Sequence[Rule], ev: Evidence, names: list[str], now: float,
+    allow: Norm | None = None,
 ) -> None:
+    """Store ``rules`` as the action's rule set; new ones are learned, except that the pieces of a
+    given rule left by subtracting the allow norm ``allow`` stay given (the instructor said both)."""
     old = {r.text: r for r in tx.rules(action)}
+    given = [parse_rule(t) for t, r in old.items() if r.origin == "given"]
     out = []
     for rule in rules:
         text = rule.text()
         if text in old:
             out.append((text, old[text].origin, old[text].provenance))
+            continue
+        parents = [g for g in given if g.conditions <= rule.conditions]
+        if allow is not None and parents:
+            out.append((text, "given", {"given": parents[0].text(), "minus": allow.text()}))
             continue
         covered = ev.prob(ev.truth(rule)) >= 0.5
         examples = [n for n, c, pos in zip(names, covered, ev.positives, strict=True) if c and pos]
@@ -157,7 +165,7 @@ def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outc
         texts = list(tx.settings().get(key, []))
         if norm.text() not in texts:
             tx.set_setting(key, [*texts, norm.text()])
-        _save_rules(tx, action, out.rules, ev, names, now)
+        _save_rules(tx, action, out.rules, ev, names, now, allow=norm)
     else:
         old = {r.text for r in tx.rules(action)}
         new = [r for r in out.rules if r.text() not in old]

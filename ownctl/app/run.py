@@ -122,12 +122,13 @@ class Interrupting:
 
 def teach_utterance(mind: Mind, hit: Interrupt, attempt: Attempt) -> bool:
     """Apply an utterance's instructions to the Mind; True if it asks the robot to stop."""
+    from ownctl.app.say import order
     from ownctl.language import Claim, Context, NormInstruction, Permission, Skip, understand
 
     ctx = Context(speaker=hit.speaker, about=hit.object, action=attempt.task.action,
                   agents=frozenset(mind.agents), objects=frozenset(o.name for o in mind.objects))
     stop = False
-    for ins in understand(hit.utterance, ctx).instructions:
+    for _, ins in order(understand(hit.utterance, ctx).instructions):
         if isinstance(ins, Claim):
             mind.claim(mind.index[ins.object], ins.agent, ins.probability, exclusive=ins.exclusive)
         elif isinstance(ins, Permission):
@@ -209,11 +210,9 @@ def run(
                    "reason": record.reason, "mistake": record.mistake}
         with ctx.write(payload) as tx:
             save_mind(tx, mind, ctx.now, [record.obj])
-            convo = tx.context()
-            convo.target_id = tx.object(record.name).id
-            if not record.allowed:
-                convo.last_refusal = {"action": chosen.action, "object": record.name,
-                                      "steps": list(record.forbidding), "at": ctx.now}
+            refusal = None if record.allowed else {"action": chosen.action, "object": record.name,
+                                                   "steps": list(record.forbidding), "at": ctx.now}
+            tx.converse(target=record.name, action=chosen.action, refusal=refusal)
         if on_step is not None:
             on_step(record)
 

@@ -14,6 +14,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ownctl.config import Settings
+from ownctl.learn.algebra import specialising
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import Outcome, learn_norm, learn_permission
 from ownctl.logic.frame import Frame
@@ -181,6 +182,7 @@ class Mind:
                          self.allows[action])
         if norm.sign == "allow":
             self.allows[action].append(norm.rule)
+            self.given[action] = specialising(self.given[action], out.rules)
         else:
             self.given[action].extend(r for r in out.rules if r not in self.rules[action])
         self.rules[action] = out.rules

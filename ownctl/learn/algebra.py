@@ -79,3 +79,8 @@ def merge_rule(
             )
         ]
     return [*kept, new]
+
+
+def specialising(general: Sequence[Rule], rules: Sequence[Rule]) -> list[Rule]:
+    """The ``rules`` that specialise (or equal) one of ``general`` (e.g. a given norm minus an allow norm)."""
+    return [r for r in rules if any(g.action == r.action and g.conditions <= r.conditions for g in general)]

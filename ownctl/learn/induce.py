@@ -168,16 +168,17 @@ class Inducer:
         if any(r.conditions <= given.conditions for r in rules):
             return rules
         neg = ~self.ev.positives
-        if self.ours:
-            add = self._delta_add(rules)
-            result = self._search(given, add, np.inf)
-            return self._merge(rules, result.rule)
 
         def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
             return np.maximum(self.ev.prob(truths)[:, neg] - self.ev.t[neg], 0).sum(axis=1)
 
-        result = self._search(given, score, self.cfg.rule_tolerance * neg.sum())
-        return self._merge(rules, result.rule) if result.success else rules
+        threshold = self.cfg.rule_tolerance * neg.sum()
+        result = rule_search(self.ev, given, self.atoms, score, threshold, (), self.cfg.beam,
+                             self.cfg.max_conditions, stop_at_success=True)
+        if result.success:
+            return self._merge(rules, result.rule)
+        # ours trusts the instructor: a norm no specialisation reconciles with the examples is kept as said
+        return self._merge(rules, given) if self.ours else rules
 
     def uncover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
         """Subtract a given allow rule, first specialised against the forbidden examples."""

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ownctl.learn.evidence import Evidence
-from ownctl.logic.rules import Literal, Rule
+from ownctl.logic.rules import ANY, Literal, Rule
 
 #: scores (C,) of candidates given their stacked truth tables (C, W, n); lower is better
 Scorer = Callable[[np.ndarray, Sequence[Rule]], np.ndarray]
@@ -87,13 +87,25 @@ def _round(ev: Evidence, frontier: list[Rule], lits: list[Literal], exclude: fro
         for other in banned:  # one literal more than this parent, and containing it
             if len(other) == len(base) + 1 and base <= other:
                 skip |= other - base
-        js = [j for j, x in enumerate(lits) if x.atom not in used and x not in skip]
+        js = [j for j, x in enumerate(lits) if x.atom not in used and x not in skip
+              and _compatible(rule, x)]
         if not js:
             continue
         pairs.extend((p, j) for j in js)
         blocks.append(ev.truth(rule)[None] & table[js])
     truths = np.concatenate(blocks) if blocks else np.zeros((0, *ev.worlds.weights.shape), dtype=bool)
     return Candidates(frontier, lits, pairs), truths
+
+
+def _compatible(rule: Rule, lit: Literal) -> bool:
+    """Whether ``rule and lit`` could hold for some object (see Rule.is_satisfiable)."""
+    if lit.negated:
+        return lit.arg != ANY or all(x.pred != lit.pred or x.negated for x in rule.literals)
+    if any(x.pred == lit.pred and x.negated and x.arg == ANY for x in rule.literals):
+        return False
+    if lit.pred == "isColored" and lit.arg != ANY:
+        return all(x.pred != "isColored" or x.negated or x.arg in (ANY, lit.arg) for x in rule.literals)
+    return True
 
 
 def rule_search(

@@ -119,6 +119,18 @@ class Rule:
         lits = self.conditions
         return any(lit.negate() in lits for lit in lits)
 
+    def is_satisfiable(self) -> bool:
+        """False if no object could meet the conditions: a literal and its negation, ``pred X``
+        with ``not pred any`` (X implies any), or two different colours (colours are exclusive)."""
+        if self.is_contradictory():
+            return False
+        positive = [lit for lit in self.literals if not lit.negated]
+        nothing = {lit.pred for lit in self.literals if lit.negated and lit.arg == ANY}
+        if any(lit.pred in nothing for lit in positive):
+            return False
+        colours = {lit.arg for lit in positive if lit.pred == "isColored" and lit.arg != ANY}
+        return len(colours) <= 1
+
     def agents(self) -> frozenset[str]:
         """The specific agents named by the rule's ownedBy literals (not ``any``)."""
         return frozenset(lit.arg for lit in self.literals if lit.pred == "ownedBy" and lit.arg != ANY)
