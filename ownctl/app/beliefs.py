@@ -14,7 +14,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -22,7 +22,7 @@ from ownctl.logic.frame import Frame
 from ownctl.world.model import Area, ObjectSpec, make_frame
 
 if TYPE_CHECKING:
-    from ownctl.store.models import Object, Ownership
+    from ownctl.store.models import Ownership
     from ownctl.store.repo import Tx
 
 Belief = Callable[["Ownership"], tuple[float, str]]
@@ -64,8 +64,8 @@ class Snapshot:
         return make_frame(self.objects, self.areas, self.agents, self.own)
 
 
-def object_spec(row: Object, categories: set[str], touches: dict[str, float], now: float) -> ObjectSpec:
-    """A stored object as a core :class:`ObjectSpec`; absolute touch times become ages at ``now``."""
+def object_spec(row: Any, categories: set[str], touches: dict[str, float], now: float) -> ObjectSpec:
+    """A stored object (ORM or plain row) as a core :class:`ObjectSpec`; touch times become ages."""
     position = None if row.x is None or row.y is None else (row.x, row.y, row.z if row.z is not None else 0.0)
     return ObjectSpec(
         name=row.name,
@@ -77,22 +77,30 @@ def object_spec(row: Object, categories: set[str], touches: dict[str, float], no
 
 
 def snapshot(
-    tx: Tx, now: float, belief: Belief = decision_belief, only: Sequence[str] | None = None
+    tx: Tx,
+    now: float,
+    belief: Belief = decision_belief,
+    only: Sequence[str] | None = None,
+    ids: Sequence[int] | None = None,
 ) -> Snapshot:
-    """Load agents, areas, objects (all, or those named in ``only``) and beliefs into a Snapshot."""
+    """Load agents, areas, objects (all, those named in ``only``, or those with ``ids``) and beliefs.
+
+    Reads plain rows (not ORM objects), so a snapshot of many objects stays cheap.
+    """
     agents = tx.agents()
     agent_names = {a.id: a.name for a in agents}
-    rows = [tx.object(n) for n in only] if only is not None else tx.objects()
+    if only is not None:
+        ids = [tx.object(n).id for n in only]
+    rows = tx.object_table(ids)
     categories = tx.categories()
     touched: dict[int, dict[str, float]] = {}
-    for (oid, aid), time in tx.touches().items():
+    for (oid, aid), time in tx.touches(object_ids=ids).items():
         touched.setdefault(oid, {})[agent_names[aid]] = time
     column = {a.id: j for j, a in enumerate(agents)}
     index = {r.id: i for i, r in enumerate(rows)}
     own = np.zeros((len(rows), len(agents)))
     sources = [["none"] * len(agents) for _ in rows]
-    belief_rows = tx.ownership() if only is None else [b for r in rows for b in tx.ownership(object_id=r.id)]
-    for b in belief_rows:
+    for b in tx.belief_table(ids):
         i, j = index[b.object_id], column[b.agent_id]
         own[i, j], sources[i][j] = belief(b)
     return Snapshot(

@@ -18,7 +18,7 @@ from typing import Any
 
 from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
-from ownctl.app.learning import learn_from_norm, learn_from_permission, reinfer
+from ownctl.app.learning import after_permission, learn_from_norm, reinfer
 from ownctl.app.settings import probability
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
@@ -72,8 +72,7 @@ def add_permission(ctx: AppContext, action: str, obj: str, value: float, speaker
         if tx.settings().get("frozen.perms"):
             raise OwnctlError("permissions are frozen: new permissions are refused (ownctl unfreeze perms)")
         row = tx.set_permission(action, tx.object(obj).id, value, speaker, ctx.now)
-        outcome = learn_from_permission(tx, action, row.object_id, ctx.now)
-        reinfer(tx, ctx.now)
+        outcome = after_permission(tx, action, row.object_id, ctx.now)
         permission_id = row.id
         rules = [r.text for r in tx.rules(action)]
     verb = "forbidden" if value >= 0.5 else "allowed"

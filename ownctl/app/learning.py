@@ -23,7 +23,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ownctl.app.beliefs import induction_belief, snapshot
+from ownctl.app.beliefs import Snapshot, induction_belief, snapshot
 from ownctl.app.settings import to_config
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import Outcome, learn_norm, learn_permission
@@ -32,7 +32,6 @@ from ownctl.logic.vocab import ACTIONS
 from ownctl.ownership.features import agent_features
 from ownctl.ownership.infer import posterior
 from ownctl.ownership.predict import KernelOwnershipModel
-from ownctl.world.model import positions
 
 if TYPE_CHECKING:
     from ownctl.store.repo import Tx
@@ -48,48 +47,61 @@ def _vocabulary(tx: Tx, snap: Any) -> Vocabulary:
 
 
 def repredict(tx: Tx, agents: Sequence[str], now: float) -> None:
-    """Refit the predictors of ``agents`` on their claims and store every object's prior for them."""
+    """Refit the predictors of ``agents`` on their claims and store every object's prior for them.
+
+    Reads only what one agent's predictor needs (every object's percepts, that agent's touches and
+    claims) and writes that agent's priors with one bulk statement.
+    """
     stored = tx.settings()
     if stored.get("disabled.prediction"):
         return
     cfg = to_config(stored).predict
-    snap = snapshot(tx, now, induction_belief)
-    if not snap.objects:
+    rows = tx.object_table()
+    if not rows:
         return
-    claims = {(b.object_id, b.agent_id): b.claim_p for b in tx.ownership() if b.claim_p is not None}
+    ids = [r.id for r in rows]
+    colors_of = [r.color for r in rows]
+    palette = tuple(sorted({c for c in colors_of if c}))
+    pos = np.array([[np.nan if v is None else v for v in (r.x, r.y, r.z if r.z is not None else 0.0)]
+                    for r in rows], dtype=float)
+    pos[np.isnan(pos[:, 0]) | np.isnan(pos[:, 1])] = np.nan
+    index = {oid: i for i, oid in enumerate(ids)}
     agent_ids = {a.name: a.id for a in tx.agents()}
-    colors = tuple(sorted({o.color for o in snap.objects if o.color}))
-    pos = positions(snap.objects)
-    rows: list[dict[str, Any]] = []
+    out: list[dict[str, Any]] = []
     for agent in agents:
         aid = agent_ids[agent]
-        ages = np.array([o.last_touch.get(agent, np.nan) for o in snap.objects])
-        X = agent_features(pos, [o.color for o in snap.objects], ages, colors, cfg)
-        known = np.array([(oid, aid) in claims for oid in snap.ids])
-        targets = np.array([claims[(oid, aid)] for oid in np.array(snap.ids)[known]])
+        ages = np.full(len(ids), np.nan)
+        for (oid, _), t in tx.touches(agent_id=aid).items():
+            ages[index[oid]] = max(0.0, now - t)
+        beliefs = tx.belief_table(agent_id=aid)
+        claimed = [(index[b.object_id], b.claim_p) for b in beliefs if b.claim_p is not None]
+        X = agent_features(pos, colors_of, ages, palette, cfg)
+        known = np.array([i for i, _ in claimed], dtype=int)
+        targets = np.array([p for _, p in claimed], dtype=float)
         model = KernelOwnershipModel(cfg).fit(X[known], targets)
         p = model.predict_proba(X)
-        rows += [
-            {
-                "object_id": oid,
-                "agent_id": aid,
-                "prior_p": float(v),
-                "prior_source": model.source_,
-                "prior_time": now,
-            }
-            for oid, v in zip(snap.ids, p, strict=True)
+        out += [
+            {"object_id": oid, "agent_id": aid, "prior_p": float(v), "prior_source": model.source_,
+             "prior_time": now}
+            for oid, v in zip(ids, p, strict=True)
         ]
-    tx.write_beliefs(rows)
+    tx.write_beliefs(out)
 
 
-def _evidence(tx: Tx, action: str, now: float) -> tuple[Evidence, list[int], Any]:
-    perms = [p for p in tx.permissions() if p.action == action]
-    names = [o.name for o in map(tx.object_by_id, sorted({p.object_id for p in perms})) if o]
-    snap = snapshot(tx, now, induction_belief, only=names)
+def _evidence(
+    tx: Tx, action: str, now: float, perms: Sequence[Any] | None = None, snap: Snapshot | None = None
+) -> tuple[Evidence, list[int], Snapshot]:
+    """The stored permissions of ``action`` (oldest first) on prior beliefs, their object ids, the snapshot.
+
+    ``perms`` and ``snap`` may be passed in when the caller already loaded them (all permissions,
+    and a snapshot holding at least their objects).
+    """
+    mine = [p for p in (tx.permissions() if perms is None else perms) if p.action == action]
+    if snap is None:
+        snap = snapshot(tx, now, induction_belief, ids=sorted({p.object_id for p in mine}))
     index = {oid: i for i, oid in enumerate(snap.ids)}
-    idx = [index[p.object_id] for p in perms]
-    frame = snap.frame().take(idx)
-    return Evidence(frame, [p.value for p in perms]), [p.object_id for p in perms], snap
+    frame = snap.frame().take([index[p.object_id] for p in mine])
+    return Evidence(frame, [p.value for p in mine]), [p.object_id for p in mine], snap
 
 
 def _save_rules(
@@ -127,12 +139,15 @@ def _allows(tx: Tx, action: str) -> list[Rule]:
     return [parse_norm(t).rule for t in tx.settings().get(f"allow.{action}", [])]
 
 
-def learn_from_permission(tx: Tx, action: str, object_id: int, now: float) -> Outcome | None:
+def learn_from_permission(
+    tx: Tx, action: str, object_id: int, now: float,
+    perms: Sequence[Any] | None = None, snap: Snapshot | None = None,
+) -> Outcome | None:
     """The gate and induction after the permission of ``action`` on ``object_id`` was stored."""
     stored = tx.settings()
     if stored.get("frozen.rules"):
         return None
-    ev, object_ids, snap = _evidence(tx, action, now)
+    ev, object_ids, snap = _evidence(tx, action, now, perms, snap)
     if ev.n == 0:
         return None
     rules, given = _rules(tx, action)
@@ -142,7 +157,7 @@ def learn_from_permission(tx: Tx, action: str, object_id: int, now: float) -> Ou
         rules,
         _allows(tx, action),
         ev,
-        ev.n - 1,
+        object_ids.index(object_id),
         _vocabulary(tx, snap),
         to_config(stored).learn,
         given,
@@ -150,6 +165,15 @@ def learn_from_permission(tx: Tx, action: str, object_id: int, now: float) -> Ou
     if out.induced:
         _save_rules(tx, action, out.rules, ev, names, now)
     return out
+
+
+def after_permission(tx: Tx, action: str, object_id: int, now: float) -> Outcome | None:
+    """A permission was stored: gate and induction, then posteriors, on one snapshot of the examples."""
+    perms = tx.permissions()
+    snap = snapshot(tx, now, induction_belief, ids=sorted({p.object_id for p in perms}))
+    outcome = learn_from_permission(tx, action, object_id, now, perms, snap)
+    reinfer(tx, now, perms, snap)
+    return outcome
 
 
 def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outcome:
@@ -181,18 +205,24 @@ def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outc
     return out
 
 
-def reinfer(tx: Tx, now: float) -> None:
-    """Posteriors for objects with permissions; NULL elsewhere (the prior stands)."""
+def reinfer(tx: Tx, now: float, perms: Sequence[Any] | None = None, snap: Snapshot | None = None) -> None:
+    """Posteriors for objects with permissions; NULL elsewhere (the prior stands).
+
+    ``perms`` and ``snap`` (all permissions; a prior-belief snapshot of their objects) may be passed
+    in when the caller already loaded them.
+    """
     stored = tx.settings()
-    tx.clear_beliefs(["posterior"])
-    if stored.get("disabled.inference"):
-        return
-    perms = tx.permissions()
-    if not perms:
-        return
+    perms = tx.permissions() if perms is None else perms
     object_ids = sorted({p.object_id for p in perms})
-    rules = {a: [parse_rule(r.text) for r in tx.rules(a)] for a in ACTIONS}
-    snap = snapshot(tx, now, induction_belief, only=[o.name for o in map(tx.object_by_id, object_ids) if o])
+    if stored.get("disabled.inference") or not perms:
+        tx.clear_posteriors()
+        return
+    tx.clear_posteriors(keep=object_ids)
+    rules: dict[str, list[Rule]] = {a: [] for a in ACTIONS}
+    for row in tx.rules():
+        rules[row.action].append(parse_rule(row.text))
+    if snap is None:
+        snap = snapshot(tx, now, induction_belief, ids=object_ids)
     index = {oid: i for i, oid in enumerate(snap.ids)}
     values = {a: np.full(len(snap.ids), np.nan) for a in ACTIONS}
     for p in perms:
@@ -200,13 +230,8 @@ def reinfer(tx: Tx, now: float) -> None:
     post = posterior(snap.frame(), rules, values, to_config(stored).infer.noise)
     agent_ids = {a.name: a.id for a in tx.agents()}
     rows = [
-        {
-            "object_id": oid,
-            "agent_id": agent_ids[a],
-            "posterior_p": float(post[i, j]),
-            "posterior_source": "inference",
-            "posterior_time": now,
-        }
+        {"object_id": oid, "agent_id": agent_ids[a], "posterior_p": float(post[i, j]),
+         "posterior_source": "inference", "posterior_time": now}
         for i, oid in enumerate(snap.ids)
         for j, a in enumerate(snap.agents)
     ]

@@ -33,6 +33,7 @@ from ownctl.store.models import (
 )
 
 BELIEF_KINDS = ("claim", "prior", "posterior")
+CHUNK = 900  # ids per IN (...) clause, below SQLite's default limit on bound parameters
 
 KEEP: Any = object()  # "leave this part of the conversation as it is" (Tx.converse)
 
@@ -53,6 +54,7 @@ class Tx:
 
     def __init__(self, session: Session) -> None:
         self.session = session
+        self._settings: dict[str, Any] | None = None  # read once per transaction, kept in step
 
     # -- agents ---------------------------------------------------------------------------------
     def agents(self) -> list[Agent]:
@@ -123,10 +125,23 @@ class Tx:
         if cats:
             self.session.execute(insert(Category), [{"object_id": object_id, "category": c} for c in cats])
 
-    def touches(self) -> dict[tuple[int, int], float]:
-        """(object id, agent id) -> absolute time of the agent's last interaction."""
-        rows = self.session.execute(select(Touch.object_id, Touch.agent_id, Touch.time))
-        return {(o, a): t for o, a, t in rows}
+    def touches(
+        self, agent_id: int | None = None, object_ids: Sequence[int] | None = None
+    ) -> dict[tuple[int, int], float]:
+        """(object id, agent id) -> absolute time of the agent's last interaction.
+
+        Optionally only one agent's and/or only some objects' interactions.
+        """
+        query = select(Touch.object_id, Touch.agent_id, Touch.time)
+        if agent_id is not None:
+            query = query.where(Touch.agent_id == agent_id)
+        if object_ids is None:
+            return {(o, a): t for o, a, t in self.session.execute(query)}
+        ids, out = list(object_ids), {}
+        for start in range(0, len(ids), CHUNK):
+            chunk = query.where(Touch.object_id.in_(ids[start : start + CHUNK]))
+            out.update({(o, a): t for o, a, t in self.session.execute(chunk)})
+        return out
 
     def touch(self, object_id: int, agent_id: int, time: float) -> None:
         """Record that an agent interacted with an object at ``time`` (absolute store time)."""
@@ -167,6 +182,46 @@ class Tx:
         if agent_id is not None:
             query = query.where(Ownership.agent_id == agent_id)
         return list(self.session.scalars(query.order_by(Ownership.object_id, Ownership.agent_id)))
+
+    def belief_table(
+        self, object_ids: Sequence[int] | None = None, agent_id: int | None = None
+    ) -> list[Any]:
+        """Ownership beliefs as plain rows (attribute access by column name), without ORM objects.
+
+        The fast path for reading many beliefs at once: optionally only ``object_ids`` and/or one agent.
+        """
+        query = select(*Ownership.__table__.columns)
+        if agent_id is not None:
+            query = query.where(Ownership.agent_id == agent_id)
+        if object_ids is None:
+            return list(self.session.execute(query))
+        out: list[Any] = []
+        ids = list(object_ids)
+        for start in range(0, len(ids), CHUNK):
+            out += self.session.execute(query.where(Ownership.object_id.in_(ids[start : start + CHUNK])))
+        return out
+
+    def object_table(self, object_ids: Sequence[int] | None = None) -> list[Any]:
+        """Objects as plain rows (id, name, color, x, y, z), in id order; optionally only ``object_ids``."""
+        cols = (Object.id, Object.name, Object.color, Object.x, Object.y, Object.z)
+        query = select(*cols).order_by(Object.id)
+        if object_ids is None:
+            return list(self.session.execute(query))
+        out: list[Any] = []
+        ids = list(object_ids)
+        for start in range(0, len(ids), CHUNK):
+            out += self.session.execute(query.where(Object.id.in_(ids[start : start + CHUNK])))
+        rank = {oid: k for k, oid in enumerate(ids)}
+        return sorted(out, key=lambda r: rank[r.id])
+
+    def clear_posteriors(self, keep: Iterable[int] = ()) -> None:
+        """Forget the posteriors of every object not in ``keep`` (one statement)."""
+        keep = list(keep)
+        query = update(Ownership).where(Ownership.posterior_p.is_not(None))
+        if keep and len(keep) <= CHUNK:
+            query = query.where(Ownership.object_id.not_in(keep))
+        self.session.execute(query.values(posterior_p=None, posterior_source=None, posterior_time=None))
+        self._expire(Ownership)
 
     def write_beliefs(self, rows: Sequence[dict[str, Any]]) -> None:
         """Bulk UPDATE of ownership rows; each dict has object_id, agent_id and the columns to set."""
@@ -256,11 +311,14 @@ class Tx:
 
     # -- settings, truth, context, events, bulk deletes -----------------------------------------
     def settings(self) -> dict[str, Any]:
-        """Every stored setting (key -> JSON value)."""
-        return {k: v for k, v in self.session.execute(select(Setting.key, Setting.value))}
+        """Every stored setting (key -> JSON value); a copy, read once per transaction."""
+        if self._settings is None:
+            self._settings = {k: v for k, v in self.session.execute(select(Setting.key, Setting.value))}
+        return dict(self._settings)
 
     def set_setting(self, key: str, value: Any) -> None:
         """Store (or with ``value`` None, delete) a setting."""
+        self._settings = None
         row = self.session.get(Setting, key)
         if value is None:
             if row is not None:
