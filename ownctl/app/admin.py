@@ -9,7 +9,9 @@ from __future__ import annotations
 
 from typing import Any
 
+from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
+from ownctl.app.learning import reinfer
 from ownctl.app.settings import FLAGS, check_key, effective, parse_value
 from ownctl.errors import OwnctlError
 
@@ -90,6 +92,10 @@ def set_flag(ctx: AppContext, key: str, on: bool) -> Done:
         raise OwnctlError(f"unknown switch {key!r}; valid: {', '.join(FLAGS)}", FLAGS)
     with ctx.write({"op": "flag", "key": key, "value": on}) as tx:
         tx.set_setting(key, on or None)
+        if key == "disabled.prediction" and not on:
+            after_claims(tx, [a.name for a in tx.agents()], ctx.now)  # predictions catch up
+        elif key == "disabled.inference":
+            reinfer(tx, ctx.now)  # posteriors appear or go at once
     kind, what = key.split(".")
     word = {"frozen": ("frozen", "unfrozen"), "disabled": ("disabled", "enabled")}[kind][0 if on else 1]
     return Done(f"{what} {word}", {"key": key, "value": on})

@@ -46,11 +46,15 @@ def _vocabulary(tx: Tx, snap: Any) -> Vocabulary:
     )
 
 
-def repredict(tx: Tx, agents: Sequence[str], now: float) -> None:
-    """Refit the predictors of ``agents`` on their claims and store every object's prior for them.
+def repredict(
+    tx: Tx, agents: Sequence[str] | None, now: float, object_ids: Sequence[int] | None = None
+) -> None:
+    """Refit the predictors of ``agents`` (None: every agent) on their claims and store the priors
+    of every object (or only of ``object_ids``) for them.
 
     Reads only what one agent's predictor needs (every object's percepts, that agent's touches and
-    claims) and writes that agent's priors with one bulk statement.
+    claims) and writes that agent's priors with one bulk statement. An agent without claims gets the
+    calibrated base rate (DESIGN section 5), never an empty prior.
     """
     stored = tx.settings()
     if stored.get("disabled.prediction"):
@@ -67,6 +71,8 @@ def repredict(tx: Tx, agents: Sequence[str], now: float) -> None:
     pos[np.isnan(pos[:, 0]) | np.isnan(pos[:, 1])] = np.nan
     index = {oid: i for i, oid in enumerate(ids)}
     agent_ids = {a.name: a.id for a in tx.agents()}
+    agents = list(agent_ids) if agents is None else agents
+    wanted = set(ids if object_ids is None else object_ids)
     out: list[dict[str, Any]] = []
     for agent in agents:
         aid = agent_ids[agent]
@@ -84,6 +90,7 @@ def repredict(tx: Tx, agents: Sequence[str], now: float) -> None:
             {"object_id": oid, "agent_id": aid, "prior_p": float(v), "prior_source": model.source_,
              "prior_time": now}
             for oid, v in zip(ids, p, strict=True)
+            if oid in wanted
         ]
     tx.write_beliefs(out)
 
@@ -106,25 +113,24 @@ def _evidence(
 
 def _save_rules(
     tx: Tx, action: str, rules: Sequence[Rule], ev: Evidence, names: list[str], now: float,
-    allow: Norm | None = None,
+    said: dict[Rule, dict[str, Any]] | None = None,
 ) -> None:
-    """Store ``rules`` as the action's rule set; new ones are learned, except that the pieces of a
-    given rule left by subtracting the allow norm ``allow`` stay given (the instructor said both)."""
+    """Store ``rules`` as the action's rule set. Rules kept keep their origin; rules in ``said``
+    (what an instructor just stated, or its pieces) are given, with that provenance; other new rules
+    are learned, with the examples they cover as provenance."""
     old = {r.text: r for r in tx.rules(action)}
-    given = [parse_rule(t) for t, r in old.items() if r.origin == "given"]
+    said = said or {}
     out = []
     for rule in rules:
         text = rule.text()
-        if text in old:
+        if rule in said and (text not in old or old[text].origin != "given"):
+            out.append((text, "given", said[rule]))
+        elif text in old:
             out.append((text, old[text].origin, old[text].provenance))
-            continue
-        parents = [g for g in given if g.conditions <= rule.conditions]
-        if allow is not None and parents:
-            out.append((text, "given", {"given": parents[0].text(), "minus": allow.text()}))
-            continue
-        covered = ev.prob(ev.truth(rule)) >= 0.5
-        examples = [n for n, c, pos in zip(names, covered, ev.positives, strict=True) if c and pos]
-        out.append((text, "learned", {"examples": examples, "learned_at": now}))
+        else:
+            covered = ev.prob(ev.truth(rule)) >= 0.5
+            examples = [n for n, c, pos in zip(names, covered, ev.positives, strict=True) if c and pos]
+            out.append((text, "learned", {"examples": examples, "learned_at": now}))
     tx.replace_rules(action, out, now)
 
 
@@ -180,28 +186,26 @@ def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outc
     """Cover rule (forbid) or uncover rule (allow) for a given norm, against the stored examples."""
     action = norm.rule.action
     ev, object_ids, snap = _evidence(tx, action, now)
-    rules, _ = _rules(tx, action)
+    rules, given = _rules(tx, action)
+    old_given = {r: row for r, row in zip(rules, tx.rules(action), strict=True) if row.origin == "given"}
     out = learn_norm(norm, rules, ev, _vocabulary(tx, snap), to_config(tx.settings()).learn,
-                     _allows(tx, action))
+                     _allows(tx, action), given)
     names = [snap.objects[snap.ids.index(oid)].name for oid in object_ids]
+    said: dict[Rule, dict[str, Any]] = {}
+    for r in out.given:
+        if r in old_given:
+            continue
+        if norm.sign == "allow":
+            parent = next((g for g in old_given if g.conditions <= r.conditions), None)
+            said[r] = {"given": parent.text() if parent else None, "minus": norm.text(), "speaker": speaker}
+        else:
+            said[r] = {"given": norm.text(), "speaker": speaker, "specialised": r != norm.rule}
     if norm.sign == "allow":
         key = f"allow.{action}"
         texts = list(tx.settings().get(key, []))
         if norm.text() not in texts:
             tx.set_setting(key, [*texts, norm.text()])
-        _save_rules(tx, action, out.rules, ev, names, now, allow=norm)
-    else:
-        old = {r.text for r in tx.rules(action)}
-        new = [r for r in out.rules if r.text() not in old]
-        _save_rules(tx, action, [r for r in out.rules if r not in new], ev, names, now)
-        for r in new:
-            tx.add_rule(
-                action,
-                r.text(),
-                "given",
-                {"given": norm.text(), "speaker": speaker, "specialised": r != norm.rule},
-                now,
-            )
+    _save_rules(tx, action, out.rules, ev, names, now, said)
     return out
 
 

@@ -12,6 +12,7 @@ from typing import Any
 
 from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
+from ownctl.app.learning import repredict
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.names import check_name
 from ownctl.logic.rules import parse_rule
@@ -44,6 +45,7 @@ def add_agent(ctx: AppContext, name: str) -> Done:
     check_name("agent", name)
     with ctx.write({"op": "agent.add", "agent": name}) as tx:
         tx.add_agent(name, ctx.now)
+        after_claims(tx, [name], ctx.now)  # the new agent's calibrated prior enters every belief
     return Done(f"added agent {name}", {"agent": name})
 
 
@@ -107,6 +109,7 @@ def add_object(
     with ctx.write({"op": "object.add", "object": name, **percepts, "categories": cats}) as tx:
         row = tx.add_object(name, ctx.now, **percepts)
         tx.set_categories(row.id, cats)
+        repredict(tx, None, ctx.now, [row.id])  # its priors, from every agent's predictor
     return Done(f"added object {name}", {"object": name})
 
 
@@ -128,6 +131,8 @@ def set_object(
             setattr(row, key, value)
         if cats is not None:
             tx.set_categories(row.id, cats)
+        tx.session.flush()
+        after_claims(tx, [a.name for a in tx.agents()], ctx.now)  # percepts feed prediction and rules
     changed = sorted({"x": "position", "y": "position", "z": "position"}.get(k, k) for k in percepts)
     if cats is not None:
         changed.append("categories")

@@ -12,7 +12,7 @@ import tomllib
 from pathlib import Path
 from typing import Any
 
-from ownctl.app.beliefs import object_spec
+from ownctl.app.beliefs import after_claims, object_spec
 from ownctl.app.context import AppContext, Done
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.world.model import Area, World
@@ -54,6 +54,7 @@ def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = F
             tx.touch(row.id, agents[agent], now - age)
         truth += [(row.id, agents[a], p) for a, p in world.owners.get(spec.name, {}).items()]
     tx.set_truth(truth, world.norms)
+    after_claims(tx, list(agents), now)  # priors for the new objects (and agents), then posteriors
 
 
 def load(ctx: AppContext, path: str, seed: int = 0) -> Done:

@@ -14,7 +14,6 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ownctl.config import Settings
-from ownctl.learn.algebra import specialising
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import Outcome, learn_norm, learn_permission
 from ownctl.logic.frame import Frame
@@ -179,12 +178,10 @@ class Mind:
         action = norm.rule.action
         ev, _ = self.evidence(action)
         out = learn_norm(norm, self.rules[action], ev, self.vocab, self.settings.learn,
-                         self.allows[action])
+                         self.allows[action], self.given[action])
         if norm.sign == "allow":
             self.allows[action].append(norm.rule)
-            self.given[action] = specialising(self.given[action], out.rules)
-        else:
-            self.given[action].extend(r for r in out.rules if r not in self.rules[action])
+        self.given[action] = list(out.given)
         self.rules[action] = out.rules
         self._changed()
         return out

@@ -27,13 +27,14 @@ from dataclasses import dataclass
 import numpy as np
 
 from ownctl.config import LearnConfig
-from ownctl.learn.algebra import merge_rule, rule_diff
+from ownctl.learn.algebra import merge_rule, rule_diff, specialising
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.search import rule_search, sizes
 from ownctl.logic.rules import Norm, Rule
 
 LABEL_NOISE = 0.003  # the instructor is almost always right about permissions
-LITERAL_PENALTY = 0.7  # nats per literal (and per rule) in the "ours" score
+LITERAL_PENALTY = 0.7  # nats per literal in the "ours" score
+RULE_PENALTY = 1.5  # nats per rule: a new rule must explain more than one uncertain example
 
 
 @dataclass(frozen=True)
@@ -43,6 +44,7 @@ class Outcome:
     rules: tuple[Rule, ...]
     induced: bool
     accuracy: float
+    given: tuple[Rule, ...] = ()  # after a norm: the rules that stand for what instructors said
 
     @property
     def changed(self) -> bool:
@@ -83,7 +85,7 @@ class Inducer:
         def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
             q = self.ev.prob(truths | base_truth[None])
             size = sizes(cands) + 1
-            return nll(self.ev, q) - base + LITERAL_PENALTY * size
+            return nll(self.ev, q) - base + LITERAL_PENALTY * (size - 1) + RULE_PENALTY
 
         return score
 
@@ -152,11 +154,12 @@ class Inducer:
             result = self._search(Rule(self.action), self._delta_add(current), -1e-9, (), current)
             if not result.success:
                 break
-            current = self._merge(current, result.rule)
+            merged = self._merge(current, result.rule)
+            current = [*(g for g in given if g not in merged), *merged]  # what was said stays
         for r in [r for r in current if r not in given]:
             rest = [x for x in current if x != r]
             gain = float(nll(self.ev, self.ev.q(rest)) - nll(self.ev, self.ev.q(current)))
-            if gain <= LITERAL_PENALTY * (len(r.literals) + 1):
+            if gain <= LITERAL_PENALTY * len(r.literals) + RULE_PENALTY:
                 current = rest
         for allow in allows:
             current = subtract(current, allow, self._merge)
@@ -208,14 +211,20 @@ def subtract(rules: Sequence[Rule], allow: Rule, merge=None) -> list[Rule]:  # t
     return out
 
 
-def unexplainable(ev: Evidence, rules: Sequence[Rule], i: int, cfg: LearnConfig) -> bool:
-    """True if no ownership assignment lets the rules agree with permission ``i``.
+def agreement(ev: Evidence, rules: Sequence[Rule], i: int) -> float:
+    """P(the rules agree with permission ``i``) under the prior ownership of its object."""
+    q = float(ev.q(rules)[i])
+    return float(ev.t[i] * q + (1.0 - ev.t[i]) * (1.0 - q))
 
-    Such a permission cannot be absorbed by ownership inference, which is the reason the gate
-    exists, so the ``ours`` learner learns from it even while the rules are otherwise accurate.
-    """
-    truth = ev.union(rules)[:, i]
-    return bool(not truth.any()) if ev.t[i] >= cfg.cover_threshold else bool(truth.all())
+
+EXPLAINED = 0.5  # ours: a permission the rules agree with at least this likely is left to inference
+UNEXPLAINABLE = 0.01  # ours: a permission the rules agree with less likely than this is learned from
+
+
+def unexplainable(ev: Evidence, rules: Sequence[Rule], i: int, cfg: LearnConfig) -> bool:
+    """True if ownership inference cannot plausibly absorb permission ``i``: the rules agree with it
+    with probability below UNEXPLAINABLE under its object's prior ownership."""
+    return agreement(ev, rules, i) < UNEXPLAINABLE
 
 
 def learn_permission(
@@ -226,12 +235,19 @@ def learn_permission(
 
     While the rules agree with at least ``cfg.accuracy_gate`` of the stored permissions (soft
     accuracy), nothing is learned: the permission is only stored and used for inference. The
-    ``ours`` learner also learns from a permission no ownership could explain (:func:`unexplainable`)
-    and then re-induces the whole rule set (:meth:`Inducer.reinduce`).
+    ``ours`` learner refines the gate with the new permission's own agreement: a permission the rules
+    explain plausibly (by some likely ownership) is left to inference even when accuracy is low, and
+    one they cannot explain is learned from even when accuracy is high; it then re-induces the whole
+    rule set around the given norms (:meth:`Inducer.reinduce`).
     """
     accuracy = ev.soft_accuracy(rules)
     ours = cfg.learner == "ours"
-    if accuracy >= cfg.accuracy_gate and not (ours and unexplainable(ev, rules, new, cfg)):
+    if ours:
+        agree = agreement(ev, rules, new)
+        induce = agree < UNEXPLAINABLE or (accuracy < cfg.accuracy_gate and agree < EXPLAINED)
+    else:
+        induce = accuracy < cfg.accuracy_gate
+    if not induce:
         return Outcome(tuple(rules), False, accuracy)
     ind = Inducer(action, ev, vocab, cfg)
     if ours:
@@ -250,19 +266,27 @@ def learn_permission(
 
 def learn_norm(
     norm: Norm, rules: Sequence[Rule], ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
-    allows: Sequence[Rule] = (),
+    allows: Sequence[Rule] = (), given: Sequence[Rule] = (),
 ) -> Outcome:
     """One-shot instruction of a forbid (cover rule) or allow (uncover rule) norm.
 
-    The ``ours`` learner keeps earlier allow norms in force: a forbid norm given later is added
-    minus them (the paper's system forgot an allow norm once it had been subtracted).
+    ``given`` are the current rules that instructors stated (or their pieces). The ``ours`` learner
+    lets a given forbid norm replace guesses: the norm is added (specialised only as far as the
+    examples demand) to the given rules, and the learned rules are re-induced around them, so a rule
+    learned from one example ("forbid trash" after one forbidden trash) gives way to the norm that
+    explains it. Earlier allow norms stay in force. The paper's learner ignores a norm an active rule
+    already covers.
     """
     accuracy = ev.soft_accuracy(rules)
     ind = Inducer(norm.rule.action, ev, vocab, cfg)
+    stated = [r for r in rules if r in set(given)]
     if norm.sign == "forbid":
+        if ind.ours:
+            said = ind.cover_rule(stated, norm.rule)
+            current = ind.reinduce(said, allows)
+            return Outcome(tuple(current), True, accuracy, tuple(specialising(said, current)))
         current = ind.cover_rule(list(rules), norm.rule)
-        for allow in allows if ind.ours else ():
-            current = subtract(current, allow, ind._merge)
-    else:
-        current = ind.uncover_rule(list(rules), norm.rule)
-    return Outcome(tuple(current), True, accuracy)
+        fresh = [r for r in current if r not in rules]
+        return Outcome(tuple(current), True, accuracy, tuple([*stated, *fresh]))
+    current = ind.uncover_rule(list(rules), norm.rule)
+    return Outcome(tuple(current), True, accuracy, tuple(specialising(stated, current)))

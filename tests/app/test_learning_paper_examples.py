@@ -114,10 +114,6 @@ def test_dont_thats_caseys_stores_claim_permission_and_refuses_caseys_things(run
     assert ops == ["claim", "permission", "norm"]
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "on a fresh store 'forbid trash on mug' alone induces 'forbid trash' (always; one example, no "
-    "negatives), then 'forbid trash if ownedBy casey' is dropped as already covered ('the rules already "
-    "say so'): the rule is never stored and 'check trash spoon' (unowned) exits 3"))
 def test_dont_thats_caseys_teaches_the_owner_norm(run: Ownctl) -> None:
     batch(run, CASEY_WORLD)
     dont_thats_caseys(run)
@@ -210,10 +206,6 @@ def test_being_told_trash_is_forbidden_raises_ownership_with_rules_frozen(run: O
         assert o["posterior"] > o["prior"]
 
 
-@pytest.mark.xfail(strict=True, reason=(
-    "without earlier permissions the gate sees accuracy P(owned) < 0.9 on the only example, so "
-    "induction runs: 'forbid trash' (always) is learned and the given 'forbid trash if ownedBy any' "
-    "is dropped as subsumed; the posterior then stays at the prior"))
 def test_being_told_trash_is_forbidden_raises_ownership_on_a_fresh_store(run: Ownctl) -> None:
     batch(run, INFERENCE_WORLD + "forbid trash if ownedBy any\n")
     run("forbid", "trash", "on", "box")

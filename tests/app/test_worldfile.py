@@ -100,7 +100,8 @@ def test_load_turns_ages_into_absolute_times_and_keeps_truth_apart(tmp_path: Pat
         assert sorted(touches.values()) == [750.0, 995.0]
         assert tx.truth_norms()[0] == "forbid trash if ownedBy any"
         assert tx.rules() == []  # true norms are not beliefs
-    assert all(o["p"] == 0.0 for o in query.owners(ctx, "wallet")["owners"])  # nor are true owners
+    owners = query.owners(ctx, "wallet")["owners"]  # nor are true owners: only the calibrated prior
+    assert all(o["claim"] is None and o["source"] == "base-rate" and o["p"] < 0.5 for o in owners)
     ctx.close()
 
 
