@@ -178,7 +178,8 @@ def after_permission(tx: Tx, action: str, object_id: int, now: float) -> Outcome
     perms = tx.permissions()
     snap = snapshot(tx, now, induction_belief, ids=sorted({p.object_id for p in perms}))
     outcome = learn_from_permission(tx, action, object_id, now, perms, snap)
-    reinfer(tx, now, perms, snap)
+    # unchanged rules change no other object's posterior: only this object's evidence is new
+    reinfer(tx, now, perms, snap, only=None if outcome is not None and outcome.induced else [object_id])
     return outcome
 
 
@@ -209,11 +210,15 @@ def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outc
     return out
 
 
-def reinfer(tx: Tx, now: float, perms: Sequence[Any] | None = None, snap: Snapshot | None = None) -> None:
+def reinfer(
+    tx: Tx, now: float, perms: Sequence[Any] | None = None, snap: Snapshot | None = None,
+    only: Sequence[int] | None = None,
+) -> None:
     """Posteriors for objects with permissions; NULL elsewhere (the prior stands).
 
     ``perms`` and ``snap`` (all permissions; a prior-belief snapshot of their objects) may be passed
-    in when the caller already loaded them.
+    in when the caller already loaded them; ``only`` limits the work to those objects (when nothing
+    else changed).
     """
     stored = tx.settings()
     perms = tx.permissions() if perms is None else perms
@@ -221,22 +226,26 @@ def reinfer(tx: Tx, now: float, perms: Sequence[Any] | None = None, snap: Snapsh
     if stored.get("disabled.inference") or not perms:
         tx.clear_posteriors()
         return
-    tx.clear_posteriors(keep=object_ids)
+    if only is None:
+        tx.clear_posteriors(keep=object_ids)
+    else:
+        perms = [p for p in perms if p.object_id in set(only)]
     rules: dict[str, list[Rule]] = {a: [] for a in ACTIONS}
     for row in tx.rules():
         rules[row.action].append(parse_rule(row.text))
     if snap is None:
-        snap = snapshot(tx, now, induction_belief, ids=object_ids)
+        snap = snapshot(tx, now, induction_belief, ids=object_ids if only is None else sorted(only))
     index = {oid: i for i, oid in enumerate(snap.ids)}
     values = {a: np.full(len(snap.ids), np.nan) for a in ACTIONS}
     for p in perms:
         values[p.action][index[p.object_id]] = p.value
     post = posterior(snap.frame(), rules, values, to_config(stored).infer.noise)
     agent_ids = {a.name: a.id for a in tx.agents()}
+    wanted = set(object_ids if only is None else only)
     rows = [
         {"object_id": oid, "agent_id": agent_ids[a], "posterior_p": float(post[i, j]),
          "posterior_source": "inference", "posterior_time": now}
-        for i, oid in enumerate(snap.ids)
+        for i, oid in enumerate(snap.ids) if oid in wanted
         for j, a in enumerate(snap.agents)
     ]
     tx.write_beliefs(rows)

@@ -55,11 +55,14 @@ class Tx:
     def __init__(self, session: Session) -> None:
         self.session = session
         self._settings: dict[str, Any] | None = None  # read once per transaction, kept in step
+        self._agents: list[Agent] | None = None  # likewise
 
     # -- agents ---------------------------------------------------------------------------------
     def agents(self) -> list[Agent]:
-        """Every agent, by name."""
-        return list(self.session.scalars(select(Agent).order_by(Agent.name)))
+        """Every agent, by name (read once per transaction)."""
+        if self._agents is None:
+            self._agents = list(self.session.scalars(select(Agent).order_by(Agent.name)))
+        return list(self._agents)
 
     def agent(self, name: str) -> Agent:
         """The agent called ``name``."""
@@ -71,6 +74,7 @@ class Tx:
     def add_agent(self, name: str, now: float) -> Agent:
         """A new agent, with an empty ownership row for every object."""
         self._unique(Agent, name, "agent")
+        self._agents = None
         row = Agent(name=name, created=now)
         self.session.add(row)
         self.session.flush()
@@ -81,6 +85,7 @@ class Tx:
 
     def remove(self, row: Base) -> None:
         """Delete one row (an agent's or object's beliefs, touches and permissions cascade)."""
+        self._agents = None
         self.session.delete(row)
         self.session.flush()
 
