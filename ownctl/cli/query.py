@@ -97,8 +97,23 @@ def rules_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = 
     from ownctl.app import query
 
     rows = query.list_rules(app_ctx(ctx))
-    cells = [[r["id"], r["text"], r["origin"], r["accuracy"]] for r in rows]
-    emit(rows, json_out, quiet, table("rules", ["id", "rule", "origin", "accuracy"], cells))
+    cells = [[r["id"], r["text"], r["origin"], _provenance(r.get("provenance") or {}), r["accuracy"]]
+             for r in rows]
+    emit(rows, json_out, quiet, table("rules", ["id", "rule", "origin", "from", "accuracy"], cells))
+
+
+def _provenance(prov: dict) -> str:
+    """Where a rule came from, in a few words: the examples it was learned from, or who said it."""
+    if prov.get("examples") is not None:
+        shown = prov["examples"][:4]
+        more = len(prov["examples"]) - len(shown)
+        return "examples " + ", ".join(shown) + (f" (+{more})" if more > 0 else "") if shown else "examples"
+    if prov.get("minus"):
+        return f"{prov.get('given')!r} minus {prov['minus']!r}"
+    if prov.get("given"):
+        who = f" by {prov['speaker']}" if prov.get("speaker") else ""
+        return f"said{who}" + (" (specialised)" if prov.get("specialised") else "")
+    return prov.get("during", "")
 
 
 @rules.command("remove")
