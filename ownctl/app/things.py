@@ -12,7 +12,7 @@ from typing import Any
 
 from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
-from ownctl.app.learning import repredict
+from ownctl.app.learning import reinfer, repredict
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.names import check_name
 from ownctl.logic.rules import parse_rule
@@ -62,17 +62,26 @@ def _named_by_rules(tx: Any, pred: str, name: str) -> list[int]:
     return [r.id for r in tx.rules() if any(lit.atom == (pred, name) for lit in parse_rule(r.text).literals)]
 
 
-def remove_agent(ctx: AppContext, name: str) -> Done:
-    """Forget an agent and its beliefs; refused while a rule names it."""
-    with ctx.write({"op": "agent.remove", "agent": name}) as tx:
-        row = tx.agent(name)
-        users = _named_by_rules(tx, "ownedBy", name)
+def _remove_named(ctx: AppContext, kind: str, name: str, pred: str | None) -> Done:
+    """Forget an agent, area or object; an agent or area is refused while a rule names it.
+
+    Beliefs and permissions about it go with it (cascades), and posteriors follow the change.
+    """
+    with ctx.write({"op": f"{kind}.remove", kind: name}) as tx:
+        row = {"agent": tx.agent, "area": tx.area, "object": tx.object}[kind](name)
+        users = _named_by_rules(tx, pred, name) if pred else []
         if users:
             raise OwnctlError(
-                f"agent {name!r} is named by rules {users}; remove them first (ownctl rules remove ID)"
+                f"{kind} {name!r} is named by rules {users}; remove them first (ownctl rules remove ID)"
             )
         tx.remove(row)
-    return Done(f"removed agent {name}", {"agent": name})
+        reinfer(tx, ctx.now)
+    return Done(f"removed {kind} {name}", {kind: name})
+
+
+def remove_agent(ctx: AppContext, name: str) -> Done:
+    """Forget an agent and its beliefs; refused while a rule names it."""
+    return _remove_named(ctx, "agent", name, "ownedBy")
 
 
 # -- objects ------------------------------------------------------------------------------------
@@ -141,9 +150,7 @@ def set_object(
 
 def remove_object(ctx: AppContext, name: str) -> Done:
     """Forget an object with its beliefs and permissions."""
-    with ctx.write({"op": "object.remove", "object": name}) as tx:
-        tx.remove(tx.object(name))
-    return Done(f"removed object {name}", {"object": name})
+    return _remove_named(ctx, "object", name, None)
 
 
 def _object_dict(row: Any, categories: set[str], touches: dict[str, float]) -> dict[str, Any]:
@@ -214,12 +221,4 @@ def list_areas(ctx: AppContext) -> list[dict[str, Any]]:
 
 def remove_area(ctx: AppContext, name: str) -> Done:
     """Forget an area; refused while a rule names it."""
-    with ctx.write({"op": "area.remove", "area": name}) as tx:
-        row = tx.area(name)
-        users = _named_by_rules(tx, "inArea", name)
-        if users:
-            raise OwnctlError(
-                f"area {name!r} is named by rules {users}; remove them first (ownctl rules remove ID)"
-            )
-        tx.remove(row)
-    return Done(f"removed area {name}", {"area": name})
+    return _remove_named(ctx, "area", name, "inArea")
