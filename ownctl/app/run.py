@@ -30,6 +30,19 @@ from ownctl.experiment.task_report import StepRecord, TaskReport
 from ownctl.world.model import Position, World
 
 INSTRUCTORS = ("oracle", "none")
+ARMS = ("auto", "left", "right")
+GRASPS = ("weld", "friction")
+
+
+def check_options(task: str, instructor: str, arm: str, grasp: str, render: str | None) -> None:
+    """Refuse bad options before anything is loaded, shown or written (names the valid values)."""
+    get_task(task)
+    for what, value, valid in (("instructor", instructor, INSTRUCTORS), ("arm", arm, ARMS),
+                               ("grasp", grasp, GRASPS)):
+        if value not in valid:
+            raise BadValue(f"unknown {what} {value!r}; valid: {', '.join(valid)}", valid)
+    if render and not render.endswith((".png", ".mp4")):
+        raise BadValue(f"--render must name a .png or .mp4 file, got {render!r}")
 
 
 @dataclass(frozen=True)
@@ -184,11 +197,8 @@ def run(
     on_step: Callable[[StepRecord], None] | None = None,
 ) -> RunReport:
     """Play ``task`` on the store's world; persist every object's attempt as it happens."""
+    check_options(task, instructor, arm, grasp, render)
     chosen = get_task(task)
-    if instructor not in INSTRUCTORS:
-        raise BadValue(f"unknown instructor {instructor!r}; valid instructors: {', '.join(INSTRUCTORS)}")
-    if render and not render.endswith((".png", ".mp4")):
-        raise BadValue(f"--render must name a .png or .mp4 file, got {render!r}")
     loaded = _ensure_world(ctx, seed, layout_seed)
     world = current_world(ctx)
     from ownctl.experiment.oracle import OracleInstructor

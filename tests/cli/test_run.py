@@ -85,6 +85,9 @@ def test_bad_options_are_refused_before_anything_is_written(ownctl: Ownctl) -> N
     assert "trashall" in ownctl("run", "cleanAll", code=1).stderr.lower()
     ownctl("run", "trashAll", "--render", "x.gif", code=1)
     ownctl("run", "trashAll", "--instructor", "teacher", code=1)
+    assert "valid: auto, left, right" in ownctl("run", "trashAll", "--arm", "middle", code=1).stderr
+    ownctl("run", "trashAll", "--grasp", "glue", "--kinematic", code=1)
+    assert ownctl("run", "cleanAll", code=1).stdout == ""  # nothing shown before the error
     assert ownctl.digest() == before
 
 
