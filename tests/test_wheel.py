@@ -76,3 +76,12 @@ def test_wheel_ships_migrations(tmp_path: Path) -> None:
     assert json.loads(current.stdout)["current"] is True
     version = subprocess.run([ownctl, "--version"], cwd=elsewhere, env=env, capture_output=True, text=True)
     assert version.stdout.startswith("ownctl ")
+    sim_file = subprocess.run([str(python), "-c", "import sim; print(sim.__file__)"], cwd=elsewhere, env=env,
+                              capture_output=True, text=True, check=True).stdout.strip()
+    assert sim_file.startswith(str(venv))  # the simulation ships in the wheel too
+    fresh = f"sqlite:///{tmp_path / 'task.db'}"
+    subprocess.run([ownctl, "--db", fresh, "init"], cwd=elsewhere, env=env, check=True, capture_output=True)
+    task = subprocess.run([ownctl, "--db", fresh, "run", "trashAll", "--json"],
+                          cwd=elsewhere, env=env, capture_output=True, text=True)
+    assert task.returncode == 0, task.stderr
+    assert json.loads(task.stdout)["sim_seconds"] > 0
