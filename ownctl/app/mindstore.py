@@ -39,16 +39,12 @@ def mind_from_store(tx: Tx, world: World) -> Mind:
         if b.prior_p is not None:
             mind.predicted[i, j] = b.prior_p
     for p in tx.permissions():
-        i = rows[p.object_id]
-        mind.perms[p.action][i] = p.value
-        mind.order[p.action].append(i)
-        mind._permitted[i] = True
+        mind.remember(p.action, rows[p.object_id], p.value)
     for action in ACTIONS:
         texts = tx.rules(action)
         mind.rules[action] = tuple(parse_rule(r.text) for r in texts)
         mind.given[action] = [parse_rule(r.text) for r in texts if r.origin == "given"]
         mind.allows[action] = [parse_norm(t).rule for t in stored.get(f"allow.{action}", [])]
-    mind._changed()
     return mind
 
 

@@ -151,6 +151,14 @@ class Mind:
         frame = self._seen.with_own(self.prior).take(idx)
         return Evidence(frame, self.perms[action][idx]), idx
 
+    def remember(self, action: str, obj: int, value: float) -> None:
+        """Restore a permission known from before (a stored one): no gate, no induction."""
+        if obj not in self.order[action]:
+            self.order[action].append(obj)
+        self.perms[action][obj] = value
+        self._permitted[obj] = True
+        self._changed()
+
     def permit(self, action: str, obj: int, value: float) -> Outcome | None:
         """An object-specific permission (1 forbid, 0 allow): store, gate, induce, re-infer."""
         if self.switches.frozen_perms:
