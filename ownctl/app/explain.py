@@ -196,10 +196,28 @@ def _steps(tx: Any, row: Any, steps: list[dict[str, Any]], own: dict[str, float]
     return out
 
 
-def explain(ctx: AppContext, action: str, obj: str) -> Explanation:
-    """Why ``action`` is forbidden or permitted on ``obj``: the deciding permission or rules, and the
-    ownership atoms they read with their provenance (see the module docstring)."""
+def last_refusal(ctx: AppContext) -> tuple[str, str]:
+    """The (action, object) of the conversation's last refusal ("why not?"); an error if none."""
+    from ownctl.language import MissingContext
+
+    with ctx.read() as tx:
+        refusal = tx.conversation().refusal
+    if not refusal:
+        raise MissingContext(
+            "why not what? nothing was refused yet; ask about an action "
+            "(\"Why can't you throw this away?\") or run: ownctl explain ACTION OBJECT"
+        )
+    return refusal["action"], refusal["object"]
+
+
+def explain(ctx: AppContext, action: str | None = None, obj: str | None = None) -> Explanation:
+    """Why ``action`` is forbidden or permitted on ``obj`` (both omitted: the last refusal): the
+    deciding permission or rules, and the ownership atoms they read with their provenance (see the
+    module docstring)."""
     from ownctl.app.decide import check
+
+    if action is None or obj is None:
+        action, obj = last_refusal(ctx)
 
     data = dict(check(ctx, action, obj, record=False).data)
     with ctx.read() as tx:

@@ -28,7 +28,6 @@ from ownctl.language import (
     Context,
     Instruction,
     Introduce,
-    MissingContext,
     NormInstruction,
     Permission,
     RunTask,
@@ -112,17 +111,7 @@ def _check_answer(data: dict[str, Any], reason: str) -> str:
 def _why(ctx: AppContext, ins: AskWhy) -> dict[str, Any]:
     from ownctl.app.explain import explain
 
-    action, obj = ins.action, ins.object
-    if action is None or obj is None:
-        with ctx.read() as tx:
-            refusal = tx.conversation().refusal
-        if not refusal:
-            raise MissingContext(
-                "why not what? nothing was refused yet; ask about an action "
-                "(\"Why can't you throw this away?\") or run: ownctl explain ACTION OBJECT"
-            )
-        action, obj = refusal["action"], refusal["object"]
-    return explain(ctx, action, obj).data
+    return explain(ctx, ins.action, ins.object).data
 
 
 class _Turn:

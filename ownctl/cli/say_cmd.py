@@ -55,17 +55,21 @@ def say(
 def explain(
     ctx: typer.Context,
     action: Annotated[
-        str,
+        str | None,
         typer.Argument(
             help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
+            " Omitted (with OBJECT): the last refusal."
         ),
-    ],
-    obj: Annotated[str, typer.Argument(help="The object.")],
+    ] = None,
+    obj: Annotated[str | None, typer.Argument(help="The object.")] = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Why ACTION is forbidden or permitted on OBJECT: the deciding permission or rules, and where
-    each ownership belief they read comes from (claim, prediction, inference)."""
+    """Why ACTION is forbidden or permitted on OBJECT (or the last refusal: "why not?"): the deciding
+    permission or rules, and where each ownership belief they read comes from (claim, prediction,
+    inference)."""
+    if (action is None) != (obj is None):
+        raise typer.BadParameter("give both ACTION and OBJECT, or neither (the last refusal)")
     from ownctl.app.explain import explain as why
 
     result = why(app_ctx(ctx), action, obj)

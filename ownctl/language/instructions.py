@@ -53,9 +53,9 @@ class Claim:
         return 1.0 - self.p if self.negated else self.p
 
     def text(self) -> str:
-        """``claim wallet casey [--not] [--exclusive] [-p 0.8]``."""
-        flags = (" --not" if self.negated else "") + (" --exclusive" if self.exclusive else "")
-        conf = f" -p {self.p:g}" if self.p != 1.0 else ""
+        """``claim wallet casey [--not] [--only] [--p 0.8]`` (the ``ownctl claim`` command line)."""
+        flags = (" --not" if self.negated else "") + (" --only" if self.exclusive else "")
+        conf = f" --p {self.p:g}" if self.p != 1.0 else ""
         return f"claim {self.object} {self.agent}{flags}{conf}"
 
     def say(self) -> str:

@@ -90,3 +90,11 @@ def test_json_has_the_check_shape_plus_provenance(table_world: Ownctl) -> None:
 def test_unknown_names_are_errors(table_world: Ownctl) -> None:
     assert "known objects: mug, pen, wallet" in table_world("explain", "trash", "ghost", code=1).stderr
     assert "unknown action 'thrash'" in table_world("explain", "thrash", "mug", code=1).stderr
+
+
+def test_without_arguments_it_explains_the_last_refusal(table_world: Ownctl) -> None:
+    assert "nothing was refused yet" in table_world("explain", code=1).stderr
+    table_world("forbid", "trash", "if", "ownedBy", "alexis")
+    table_world("check", "trash", "wallet", code=3)  # the refusal is remembered
+    assert table_world("explain").stdout == table_world("explain", "trash", "wallet").stdout
+    table_world("explain", "trash", code=2)  # an action alone is a usage error

@@ -141,7 +141,7 @@ def test_an_introduction_adds_the_agent_and_makes_it_the_speaker(table_world: Ow
 
 def test_an_exclusive_claim_takes_the_object_from_everyone_else(table_world: Ownctl) -> None:
     out = table_world.json("say", "It's mine now, not Alexis's", "--as", "xuan", "--about", "wallet")
-    assert out["instructions"] == ["claim wallet xuan --exclusive", "claim wallet alexis --not"]
+    assert out["instructions"] == ["claim wallet xuan --only", "claim wallet alexis --not"]
     owners = {o["agent"]: o["p"] for o in table_world.json("owners", "wallet")["owners"]}
     assert owners == {"xuan": 1.0, "alexis": 0.0}
 

@@ -44,8 +44,8 @@ def test_normalize(raw: str, norm: str) -> None:
 def test_instruction_texts() -> None:
     assert Claim("wallet", "casey").text() == "claim wallet casey"
     assert Claim("wallet", "xuan", negated=True).text() == "claim wallet xuan --not"
-    assert Claim("wallet", "jake", exclusive=True).text() == "claim wallet jake --exclusive"
-    assert Claim("wallet", "jake", p=0.8).text() == "claim wallet jake -p 0.8"
+    assert Claim("wallet", "jake", exclusive=True).text() == "claim wallet jake --only"
+    assert Claim("wallet", "jake", p=0.8).text() == "claim wallet jake --p 0.8"
     assert Permission("trash", "wallet", forbid=True).text() == "forbid trash on wallet"
     assert Permission("pickUp", "cup", forbid=False).text() == "allow pickUp on cup"
     norm = parse_norm("forbid trash if ownedBy casey")
