@@ -45,14 +45,15 @@ def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = F
     for area in world.areas:
         if area.name not in known_areas:
             tx.add_area(area.name, area.box)
-    truth: list[tuple[int, int, float]] = []
+    rows = []
     for spec in world.objects:
         x, y, z = spec.position if spec.position is not None else (None, None, None)
-        row = tx.add_object(spec.name, now, color=spec.color, x=x, y=y, z=z)
-        tx.set_categories(row.id, spec.categories)
-        for agent, age in spec.last_touch.items():
-            tx.touch(row.id, agents[agent], now - age)
-        truth += [(row.id, agents[a], p) for a, p in world.owners.get(spec.name, {}).items()]
+        rows.append({"name": spec.name, "color": spec.color, "x": x, "y": y, "z": z})
+    ids = tx.add_objects(rows, now)
+    tx.add_categories([(ids[s.name], c) for s in world.objects for c in s.categories])
+    objects = world.objects
+    tx.add_touches([(ids[s.name], agents[a], now - age) for s in objects for a, age in s.last_touch.items()])
+    truth = [(ids[s.name], agents[a], p) for s in objects for a, p in world.owners.get(s.name, {}).items()]
     tx.set_truth(truth, world.norms)
     after_claims(tx, list(agents), now)  # priors for the new objects (and agents), then posteriors
 

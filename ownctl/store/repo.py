@@ -11,7 +11,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-from sqlalchemy import delete, func, insert, select, update
+from sqlalchemy import bindparam, delete, func, insert, select, update
 from sqlalchemy.orm import Session
 
 from ownctl.errors import DuplicateName, UnknownName
@@ -229,10 +229,71 @@ class Tx:
         self._expire(Ownership)
 
     def write_beliefs(self, rows: Sequence[dict[str, Any]]) -> None:
-        """Bulk UPDATE of ownership rows; each dict has object_id, agent_id and the columns to set."""
+        """Bulk UPDATE of ownership rows; each dict has object_id, agent_id and the columns to set.
+
+        One executemany statement per set of columns (plain Core, no per-row ORM work).
+        """
+        groups: dict[tuple[str, ...], list[dict[str, Any]]] = {}
+        for row in rows:
+            columns = tuple(sorted(k for k in row if k not in ("object_id", "agent_id")))
+            groups.setdefault(columns, []).append(row)
+        table = Ownership.__table__
+        for columns, group in groups.items():
+            statement = (
+                update(table)
+                .where(table.c.object_id == bindparam("k_object"), table.c.agent_id == bindparam("k_agent"))
+                .values({c: bindparam(f"v_{c}") for c in columns})
+            )
+            params = [
+                {"k_object": r["object_id"], "k_agent": r["agent_id"], **{f"v_{c}": r[c] for c in columns}}
+                for r in group
+            ]
+            self.session.connection().execute(statement, params)
         if rows:
-            self.session.execute(update(Ownership), list(rows))
             self._expire(Ownership)
+
+    def _object_ids(self, names: Sequence[str]) -> dict[str, int]:
+        """name -> id of the stored objects among ``names``."""
+        out: dict[str, int] = {}
+        for start in range(0, len(names), CHUNK):
+            query = select(Object.name, Object.id).where(Object.name.in_(names[start : start + CHUNK]))
+            out.update({name: oid for name, oid in self.session.execute(query)})
+        return out
+
+    def add_objects(self, specs: Sequence[dict[str, Any]], now: float) -> dict[str, int]:
+        """Many new objects at once (dicts of name, color, x, y, z), each with an ownership row per
+        agent; returns name -> id. Duplicate names (among them or with stored objects) are refused."""
+        names = [s["name"] for s in specs]
+        taken = sorted(self._object_ids(names)) or sorted(n for n in set(names) if names.count(n) > 1)
+        if taken:
+            raise DuplicateName(f"object {taken[0]!r} already exists; choose another name")
+        if not specs:
+            return {}
+        keys = ("name", "color", "x", "y", "z")
+        rows = [{**{k: s.get(k) for k in keys}, "extra": s.get("extra") or {}, "created": now} for s in specs]
+        self.session.connection().execute(insert(Object.__table__), rows)
+        ids = self._object_ids(names)
+        agents = list(self.session.scalars(select(Agent.id)))
+        if agents:
+            beliefs = [{"object_id": ids[n], "agent_id": a} for n in names for a in agents]
+            self.session.connection().execute(insert(Ownership.__table__), beliefs)
+        return ids
+
+    def add_touches(self, rows: Sequence[tuple[int, int, float]]) -> None:
+        """Many (object id, agent id, time) interactions of objects that have none yet, at once."""
+        if rows:
+            self.session.connection().execute(
+                insert(Touch.__table__),
+                [{"object_id": o, "agent_id": a, "time": t} for o, a, t in rows],
+            )
+
+    def add_categories(self, rows: Sequence[tuple[int, str]]) -> None:
+        """Many (object id, category) memberships of new objects, at once."""
+        if rows:
+            self.session.connection().execute(
+                insert(Category.__table__),
+                [{"object_id": o, "category": c} for o, c in sorted(set(rows))],
+            )
 
     def clear_beliefs(self, kinds: Iterable[str]) -> None:
         """Forget every claim / prior / posterior (``kinds`` among BELIEF_KINDS)."""
