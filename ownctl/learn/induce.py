@@ -71,7 +71,8 @@ class Inducer:
         return self.ev.prob(self.ev.truth(rule)) >= self.cfg.cover_threshold
 
     def _merge(self, rules: Sequence[Rule], new: Rule) -> list[Rule]:
-        return merge_rule(rules, new, None if self.ours else self._covers)
+        """Add ``new`` without its implied literals, and without redundancy (merge_rule)."""
+        return merge_rule(rules, new.simplified(), None if self.ours else self._covers)
 
     def _search(self, init: Rule, score, threshold: float, filters=(), exclude=()):  # type: ignore[no-untyped-def]
         return rule_search(self.ev, init, self.atoms, score, threshold, filters, self.cfg.beam,

@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ownctl.learn.evidence import Evidence
-from ownctl.logic.rules import ANY, Literal, Rule
+from ownctl.logic.rules import ANY, Literal, Rule, implies
 
 #: scores (C,) of candidates given their stacked truth tables (C, W, n); lower is better
 Scorer = Callable[[np.ndarray, Sequence[Rule]], np.ndarray]
@@ -88,7 +88,7 @@ def _round(ev: Evidence, frontier: list[Rule], lits: list[Literal], exclude: fro
             if len(other) == len(base) + 1 and base <= other:
                 skip |= other - base
         js = [j for j, x in enumerate(lits) if x.atom not in used and x not in skip
-              and _compatible(rule, x)]
+              and _compatible(rule, x) and not any(implies(a, x) for a in rule.literals)]
         if not js:
             continue
         pairs.extend((p, j) for j in js)

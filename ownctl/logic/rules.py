@@ -69,6 +69,24 @@ class Literal:
         return f"{'not ' if self.negated else ''}{self.pred} {self.arg}"
 
 
+def implies(a: Literal, b: Literal) -> bool:
+    """Whether literal ``a`` holding for an object forces ``b`` to hold (about the same object).
+
+    ``P x`` implies ``P any``; ``not P any`` implies ``not P x``; and colours are exclusive, so
+    ``isColored x`` implies ``not isColored y`` for another colour ``y``.
+    """
+    if a == b:
+        return True
+    if a.pred != b.pred:
+        return False
+    if not a.negated and not b.negated:
+        return a.arg != ANY and b.arg == ANY
+    if a.negated and b.negated:
+        return a.arg == ANY and b.arg != ANY
+    return (a.pred == "isColored" and not a.negated and b.negated and ANY not in (a.arg, b.arg)
+            and a.arg != b.arg)
+
+
 def canonical(literals: Iterable[Literal]) -> tuple[Literal, ...]:
     """Deduplicated literals in canonical order."""
     return tuple(sorted(set(literals), key=Literal.sort_key))
@@ -118,6 +136,12 @@ class Rule:
         """True if the rule holds a literal and its negation (it can never fire)."""
         lits = self.conditions
         return any(lit.negate() in lits for lit in lits)
+
+    def simplified(self) -> Rule:
+        """The same rule without literals another of its literals implies
+        (``ownedBy any and ownedBy xuan`` is ``ownedBy xuan``)."""
+        keep = [b for b in self.literals if not any(a != b and implies(a, b) for a in self.literals)]
+        return self if len(keep) == len(self.literals) else Rule(self.action, tuple(keep))
 
     def is_satisfiable(self) -> bool:
         """False if no object could meet the conditions: a literal and its negation, ``pred X``
