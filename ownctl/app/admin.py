@@ -80,6 +80,8 @@ def config_get(ctx: AppContext, key: str | None = None) -> dict[str, Any]:
 def config_set(ctx: AppContext, key: str, text: str) -> Done:
     """Set ``key`` to the value in ``text`` ("default" removes an override)."""
     value = parse_value(key, text)
+    if key in FLAGS:  # a switch takes effect the same way as disable/enable/freeze/unfreeze
+        return set_flag(ctx, key, bool(value))
     with ctx.write({"op": "config.set", "key": key, "value": value}) as tx:
         tx.set_setting(key, value)
     shown = "its default" if value is None else value
@@ -114,8 +116,11 @@ def reset(ctx: AppContext, what: str, yes: bool) -> Done:
         if what in ("rules", "all"):
             counts["rules"] = tx.clear("rules")
         if what in ("claims", "all"):
-            counts["claims"] = sum(1 for b in tx.ownership() if b.claim_p is not None)
+            counts["claims"] = sum(1 for b in tx.belief_table() if b.claim_p is not None)
             tx.clear_beliefs(("claim", "prior", "posterior"))
+            after_claims(tx, [a.name for a in tx.agents()], ctx.now)  # back to the calibrated priors
+        else:
+            reinfer(tx, ctx.now)  # posteriors follow the remaining permissions and rules
         if what == "all":
             tx.clear("context")
     listing = ", ".join(f"{n} {k}" for k, n in counts.items())

@@ -6,8 +6,8 @@ The one place where beliefs are resolved (DESIGN section 3):
   set, else the claim, else the prior, else 0.0;
 - :func:`induction_belief` (what rule induction sees): the claim, else the prior, else 0.0.
 
-:func:`after_claims` and :func:`after_permissions` are the hooks where prediction (KLR) and
-rule-based Bayesian inference recompute priors and posteriors (:mod:`ownctl.app.learning`).
+:func:`after_claims` is the hook where prediction (KLR) and rule-based Bayesian inference recompute
+priors and posteriors (:mod:`ownctl.app.learning`).
 """
 
 from __future__ import annotations
@@ -121,11 +121,4 @@ def after_claims(tx: Tx, agents: Sequence[str], now: float) -> None:
     from ownctl.app.learning import reinfer, repredict
 
     repredict(tx, agents, now)
-    reinfer(tx, now)
-
-
-def after_permissions(tx: Tx, actions: Sequence[str], now: float) -> None:
-    """Hook after permissions were removed or reset: posteriors follow the remaining evidence."""
-    from ownctl.app.learning import reinfer
-
     reinfer(tx, now)

@@ -11,6 +11,7 @@ import numpy as np
 
 from ownctl.app.beliefs import decision_belief, snapshot
 from ownctl.app.context import AppContext, Done
+from ownctl.app.learning import reinfer
 from ownctl.app.settings import probability
 from ownctl.errors import OwnctlError
 from ownctl.logic.prob import p_forbidden
@@ -96,6 +97,7 @@ def remove_permission(ctx: AppContext, permission_id: int) -> Done:
         row = tx.permission(permission_id)
         data = _permission_dict(row, {row.object_id: tx.object_by_id(row.object_id).name})  # type: ignore[union-attr]
         tx.remove(row)
+        reinfer(tx, ctx.now)  # the posterior no longer rests on it
     return Done(f"removed permission {permission_id} ({data['text']})", data)
 
 
@@ -138,6 +140,7 @@ def remove_rule(ctx: AppContext, rule_id: int) -> Done:
             raise OwnctlError("rules are frozen: rules are not changed (ownctl unfreeze rules)")
         text = row.text
         tx.remove(row)
+        reinfer(tx, ctx.now)  # posteriors follow the remaining rules
     return Done(f"removed rule {rule_id}: {text}", {"id": rule_id, "text": text})
 
 

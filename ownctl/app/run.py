@@ -23,7 +23,7 @@ from typing import Any
 from ownctl.app.context import AppContext
 from ownctl.app.mindstore import mind_from_store, save_mind
 from ownctl.app.worldfile import current_world, store_world
-from ownctl.errors import BadValue, OwnctlError, ScenarioFailed
+from ownctl.errors import BadValue, OwnctlError
 from ownctl.experiment.mind import Mind
 from ownctl.experiment.task import Attempt, Execution, Instructor, Verdict, get_task, run_task
 from ownctl.experiment.task_report import StepRecord, TaskReport
@@ -236,9 +236,3 @@ def run(
     sim_seconds = executor.sim_time if physics else 0.0
     failed = tuple(executor.failed) if physics else ()
     return RunReport(report, sim_seconds, wall, failed, loaded)
-
-
-def require_ok(result: RunReport) -> None:
-    """Raise ScenarioFailed (exit 4) when a physics step failed."""
-    if not result.ok:
-        raise ScenarioFailed("task step failed: " + "; ".join(result.failed_steps))

@@ -106,3 +106,11 @@ def export(ctx: AppContext, name: str = "") -> dict[str, Any]:
 def export_toml(data: dict[str, Any]) -> str:
     """TOML text of an :func:`export` result."""
     return to_toml(data)
+
+
+def write_text(path: str | Path, text: str) -> None:
+    """Write an exported world to ``path``; an unwritable path is a user error, not a traceback."""
+    try:
+        Path(path).write_text(text, encoding="utf-8")
+    except OSError as exc:
+        raise OwnctlError(f"cannot write {path}: {exc.strerror or exc}") from None

@@ -59,7 +59,7 @@ def world_export(
     if output is None:
         typer.echo(text, nl=False)
     else:
-        output.write_text(text, encoding="utf-8")
+        worldfile.write_text(output, text)
 
 
 @agent.command("add")

@@ -71,8 +71,8 @@ def test_wallet_with_a_second_tracked_agent_and_prediction_disabled(run: Ownctl)
     assert xuan["source"] == "prediction" and 0 < xuan["p"] < 1
     assert predicted["p_forbidden"] == pytest.approx(1 - 0.25 * (1 - xuan["p"]), abs=1e-12)
 
-    run("reset", "claims", "--yes")
     run("disable", "prediction")
+    run("reset", "claims", "--yes")  # claims and what was predicted from them go; nothing is re-predicted
     run("claim", "mug", "xuan")
     run("claim", "wallet", "alexis", "--p", "0.75")
     report = run.json("check", "trash", "wallet", code=3)

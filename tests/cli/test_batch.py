@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -35,9 +36,18 @@ def test_batch_runs_every_line_in_one_process(ownctl: Ownctl, tmp_path: Path) ->
 
 
 def test_batch_from_stdin_with_json_summary(ownctl: Ownctl) -> None:
-    result = ownctl("batch", "-", "--json", input="agent add a1 --quiet\nagent add a2 --quiet\n")
-    assert result.stdout.strip() == '{"file": "stdin", "ran": 2}'
+    result = ownctl("batch", "-", "--json", input="agent add a1 --quiet\nagent add a2 --json\n")
+    data = json.loads(result.stdout)  # exactly one document, holding each line's own output
+    assert data["file"] == "stdin" and data["ran"] == 2
+    assert [(x["line"], x["exit"]) for x in data["lines"]] == [(1, 0), (2, 0)]
+    assert data["lines"][1]["output"] == {"agent": "a2"}
     assert [a["name"] for a in ownctl.json("agent", "list")] == ["a1", "a2"]
+
+
+def test_batch_json_failure_is_one_document(ownctl: Ownctl) -> None:
+    result = ownctl("batch", "-", "--json", input="agent add a1\nclaim pen a1\n", code=1)
+    data = json.loads(result.stdout)
+    assert data["failed"] == 2 and data["ran"] == 1 and "unknown object 'pen'" in data["error"]
 
 
 def test_lines_before_a_failure_stay_done(ownctl: Ownctl) -> None:
