@@ -205,7 +205,7 @@ class Mind:
         if not np.isnan(value):
             return bool(value >= 0.5)
         thr = self.settings.threshold_for(action)
-        return bool(self.p_forbidden(action)[obj] >= thr)
+        return bool(p_forbidden(self.rules[action], self.frame().take([obj]))[0] >= thr)
 
     def decide(self, action: str, obj: int, steps: Sequence[str]) -> tuple[bool, list[str]]:
         """Is ``action`` forbidden on ``obj`` (any of ``steps`` forbidden), and which steps forbid."""

@@ -10,7 +10,7 @@ from collections.abc import Callable, Sequence
 
 import numpy as np
 
-from ownctl.logic.rules import Literal, Rule
+from ownctl.logic.rules import Literal, Rule, implies
 
 
 def refine(rule: Rule, atoms: Sequence[Literal]) -> list[Rule]:
@@ -26,11 +26,13 @@ def refine(rule: Rule, atoms: Sequence[Literal]) -> list[Rule]:
 
 
 def rule_diff(r1: Rule, r2: Rule) -> list[Rule]:
-    """``r1 and not r2`` as a list of rules (empty if r2 contains r1; [r1] if they are disjoint)."""
-    c1 = r1.conditions
-    if any(lit.negate() in c1 for lit in r2.literals):
+    """``r1 and not r2`` as a list of satisfiable rules: [r1] if the two are disjoint, empty if r1
+    implies r2; otherwise ``r1 and not l`` for each literal ``l`` of r2 that r1 does not imply."""
+    if any(not r1.admits(lit) for lit in r2.literals):
         return [r1]
-    return [r1.with_literal(lit.negate()) for lit in r2.literals if lit not in c1]
+    pieces = [r1.with_literal(lit.negate()) for lit in r2.literals
+              if not any(implies(a, lit) for a in r1.literals)]
+    return [p for p in pieces if p.is_satisfiable()]
 
 
 def merge_pair(r1: Rule, r2: Rule) -> Rule | None:
@@ -50,8 +52,8 @@ def merge_rule(
 
     Complementary pairs merge repeatedly; a rule that is syntactically more specific than another is
     dropped (the general one stays). When ``covers`` is given (rule -> bool mask of the stored
-    examples it covers), a rule no more specific than ``new`` whose covered examples are a strict
-    subset of ``new``'s is also dropped (the paper's data-driven subsumption).
+    examples it covers), a rule with at least as many literals as ``new`` whose covered examples
+    are a strict subset of ``new``'s is also dropped (the paper's data-driven subsumption).
     """
     current = list(rules)
     changed = True
@@ -69,15 +71,12 @@ def merge_rule(
     kept = [r for r in current if not new.conditions <= r.conditions]
     if covers is not None:
         mask_new = covers(new)
-        kept = [
-            r
-            for r in kept
-            if not (
-                len(new.literals) <= len(r.literals)
-                and np.all(covers(r) <= mask_new)
-                and np.any(mask_new & ~covers(r))
-            )
-        ]
+
+        def subsumed(r: Rule) -> bool:
+            mask = covers(r)
+            return bool(np.all(mask <= mask_new) and np.any(mask_new & ~mask))
+
+        kept = [r for r in kept if not (len(new.literals) <= len(r.literals) and subsumed(r))]
     return [*kept, new]
 
 

@@ -46,11 +46,6 @@ class Outcome:
     accuracy: float
     given: tuple[Rule, ...] = ()  # after a norm: the rules that stand for what instructors said
 
-    @property
-    def changed(self) -> bool:
-        """Whether the caller's rule set changed (compare with the one it passed in)."""
-        return self.induced
-
 
 def nll(ev: Evidence, q: np.ndarray) -> np.ndarray:
     """Negative log-likelihood of the permissions given forbid probabilities q (..., n) -> (...)."""
@@ -207,8 +202,7 @@ def subtract(rules: Sequence[Rule], allow: Rule, merge=None) -> list[Rule]:  # t
             out = merge(out, r)
             continue
         for piece in pieces:
-            if not piece.is_contradictory():
-                out = merge(out, piece)
+            out = merge(out, piece)
     return out
 
 
@@ -220,12 +214,6 @@ def agreement(ev: Evidence, rules: Sequence[Rule], i: int) -> float:
 
 EXPLAINED = 0.5  # ours: a permission the rules agree with at least this likely is left to inference
 UNEXPLAINABLE = 0.01  # ours: a permission the rules agree with less likely than this is learned from
-
-
-def unexplainable(ev: Evidence, rules: Sequence[Rule], i: int, cfg: LearnConfig) -> bool:
-    """True if ownership inference cannot plausibly absorb permission ``i``: the rules agree with it
-    with probability below UNEXPLAINABLE under its object's prior ownership."""
-    return agreement(ev, rules, i) < UNEXPLAINABLE
 
 
 def learn_permission(

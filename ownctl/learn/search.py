@@ -13,7 +13,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ownctl.learn.evidence import Evidence
-from ownctl.logic.rules import ANY, Literal, Rule, implies
+from ownctl.logic.rules import Literal, Rule, implies
 
 #: scores (C,) of candidates given their stacked truth tables (C, W, n); lower is better
 Scorer = Callable[[np.ndarray, Sequence[Rule]], np.ndarray]
@@ -88,24 +88,13 @@ def _round(ev: Evidence, frontier: list[Rule], lits: list[Literal], exclude: fro
             if len(other) == len(base) + 1 and base <= other:
                 skip |= other - base
         js = [j for j, x in enumerate(lits) if x.atom not in used and x not in skip
-              and _compatible(rule, x) and not any(implies(a, x) for a in rule.literals)]
+              and rule.admits(x) and not any(implies(a, x) for a in rule.literals)]
         if not js:
             continue
         pairs.extend((p, j) for j in js)
         blocks.append(ev.truth(rule)[None] & table[js])
     truths = np.concatenate(blocks) if blocks else np.zeros((0, *ev.worlds.weights.shape), dtype=bool)
     return Candidates(frontier, lits, pairs), truths
-
-
-def _compatible(rule: Rule, lit: Literal) -> bool:
-    """Whether ``rule and lit`` could hold for some object (see Rule.is_satisfiable)."""
-    if lit.negated:
-        return lit.arg != ANY or all(x.pred != lit.pred or x.negated for x in rule.literals)
-    if any(x.pred == lit.pred and x.negated and x.arg == ANY for x in rule.literals):
-        return False
-    if lit.pred == "isColored" and lit.arg != ANY:
-        return all(x.pred != "isColored" or x.negated or x.arg in (ANY, lit.arg) for x in rule.literals)
-    return True
 
 
 def rule_search(
@@ -132,6 +121,8 @@ def rule_search(
     best, best_score = init, float(score(truth0, [init])[0])
     ok = init not in banned and all(bool(f(truth0, [init])[0]) for f in filters)
     success = ok and best_score <= threshold
+    if not ok:  # a rejected start is no standard: the first acceptable candidate may score worse
+        best_score = np.inf
     frontier = [init]
     depth = len(init.literals)
     while frontier and depth < max_conditions:
@@ -155,6 +146,4 @@ def rule_search(
         if top < best_score - 1e-12:
             best, best_score = frontier[0], top
             success = best_score <= threshold
-        elif not success and not ok and top <= best_score + 1e-12 and top <= threshold:
-            best, best_score, success = frontier[0], top, True
     return SearchResult(best, best_score, success)

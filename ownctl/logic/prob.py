@@ -52,7 +52,8 @@ def relevant_atoms(rule_sets: Iterable[Sequence[Rule]]) -> tuple[tuple[str, ...]
 
 def other_probability(frame: Frame, named: Iterable[str]) -> np.ndarray:
     """Noisy-or over the agents not in ``named``: P(owned by some unnamed agent), per object."""
-    keep = [j for j, a in enumerate(frame.agents) if a not in set(named)]
+    named = set(named)
+    keep = [j for j, a in enumerate(frame.agents) if a not in named]
     if not keep:
         return np.zeros(frame.n)
     return 1.0 - np.prod(1.0 - frame.own[:, keep], axis=1)

@@ -143,17 +143,16 @@ class Rule:
         keep = [b for b in self.literals if not any(a != b and implies(a, b) for a in self.literals)]
         return self if len(keep) == len(self.literals) else Rule(self.action, tuple(keep))
 
+    def admits(self, lit: Literal) -> bool:
+        """Whether ``self and lit`` could hold for some object: not if a literal of the rule implies
+        ``not lit`` (``ownedBy xuan`` with ``not ownedBy any``; ``isColored red`` with ``isColored
+        blue``, colours being exclusive)."""
+        return not any(implies(a, lit.negate()) or implies(lit, a.negate()) for a in self.literals)
+
     def is_satisfiable(self) -> bool:
-        """False if no object could meet the conditions: a literal and its negation, ``pred X``
-        with ``not pred any`` (X implies any), or two different colours (colours are exclusive)."""
-        if self.is_contradictory():
-            return False
-        positive = [lit for lit in self.literals if not lit.negated]
-        nothing = {lit.pred for lit in self.literals if lit.negated and lit.arg == ANY}
-        if any(lit.pred in nothing for lit in positive):
-            return False
-        colours = {lit.arg for lit in positive if lit.pred == "isColored" and lit.arg != ANY}
-        return len(colours) <= 1
+        """False if no object could meet the conditions (see :meth:`admits`)."""
+        lits = self.literals
+        return all(Rule(self.action, lits[:i]).admits(lit) for i, lit in enumerate(lits))
 
     def agents(self) -> frozenset[str]:
         """The specific agents named by the rule's ownedBy literals (not ``any``)."""
