@@ -7,6 +7,7 @@ deterministic whatever the hash seed.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -64,6 +65,18 @@ def sizes(cands: Sequence[Rule]) -> np.ndarray:
     return np.array([len(c.literals) for c in cands], dtype=float)
 
 
+@functools.lru_cache(maxsize=1 << 16)
+def _open(rule: Rule, lits: tuple[Literal, ...]) -> tuple[int, ...]:
+    """Indices of the literals that refine ``rule`` into a different, satisfiable rule: an unused
+    atom, admitted by the rule (:meth:`Rule.admits`) and not already implied by it. Rules recur
+    across searches, so the answer is kept."""
+    used = {lit.atom for lit in rule.literals}
+    return tuple(
+        j for j, x in enumerate(lits)
+        if x.atom not in used and rule.admits(x) and not any(implies(a, x) for a in rule.literals)
+    )
+
+
 def _round(ev: Evidence, frontier: list[Rule], lits: list[Literal], exclude: frozenset[Rule]
            ) -> tuple[Candidates, np.ndarray]:
     """Every new one-literal refinement of the frontier (no duplicates, none in ``exclude``).
@@ -78,7 +91,6 @@ def _round(ev: Evidence, frontier: list[Rule], lits: list[Literal], exclude: fro
     blocks: list[np.ndarray] = []
     for p, rule in enumerate(frontier):
         base = rule.conditions
-        used = {lit.atom for lit in rule.literals}
         skip: set[Literal] = set()
         for other in [q.conditions for q in frontier[:p]]:  # same size: one literal differs each way
             extra = other - base
@@ -87,8 +99,7 @@ def _round(ev: Evidence, frontier: list[Rule], lits: list[Literal], exclude: fro
         for other in banned:  # one literal more than this parent, and containing it
             if len(other) == len(base) + 1 and base <= other:
                 skip |= other - base
-        js = [j for j, x in enumerate(lits) if x.atom not in used and x not in skip
-              and rule.admits(x) and not any(implies(a, x) for a in rule.literals)]
+        js = [j for j in _open(rule, tuple(lits)) if lits[j] not in skip]
         if not js:
             continue
         pairs.extend((p, j) for j in js)

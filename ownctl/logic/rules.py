@@ -57,8 +57,13 @@ class Literal:
         return (self.pred, self.arg)
 
     def negate(self) -> Literal:
-        """The complementary literal."""
-        return Literal(self.pred, self.arg, not self.negated)
+        """The complementary literal (made once per literal: search asks for it very often)."""
+        neg = self.__dict__.get("_neg")
+        if neg is None:
+            neg = Literal(self.pred, self.arg, not self.negated)
+            object.__setattr__(self, "_neg", neg)
+            object.__setattr__(neg, "_neg", self)
+        return neg  # type: ignore[no-any-return]
 
     def sort_key(self) -> tuple[int, bool, str, bool]:
         """Canonical order: vocabulary order, ``any`` first, then argument, positive first."""
