@@ -37,7 +37,7 @@ if TYPE_CHECKING:
     from ownctl.store.repo import Tx
 
 
-def _vocabulary(tx: Tx, snap: Any) -> Vocabulary:
+def _vocabulary(snap: Any) -> Vocabulary:
     return Vocabulary(
         snap.agents,
         tuple(sorted({o.color for o in snap.objects if o.color})),
@@ -111,7 +111,7 @@ def _evidence(
     return Evidence(frame, [p.value for p in mine]), [p.object_id for p in mine], snap
 
 
-def _save_rules(
+def save_rules(
     tx: Tx, action: str, rules: Sequence[Rule], ev: Evidence, names: list[str], now: float,
     said: dict[Rule, dict[str, Any]] | None = None,
 ) -> None:
@@ -164,12 +164,12 @@ def learn_from_permission(
         _allows(tx, action),
         ev,
         object_ids.index(object_id),
-        _vocabulary(tx, snap),
+        _vocabulary(snap),
         to_config(stored).learn,
         given,
     )
     if out.induced:
-        _save_rules(tx, action, out.rules, ev, names, now)
+        save_rules(tx, action, out.rules, ev, names, now)
     return out
 
 
@@ -189,7 +189,7 @@ def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outc
     ev, object_ids, snap = _evidence(tx, action, now)
     rules, given = _rules(tx, action)
     old_given = {r: row for r, row in zip(rules, tx.rules(action), strict=True) if row.origin == "given"}
-    out = learn_norm(norm, rules, ev, _vocabulary(tx, snap), to_config(tx.settings()).learn,
+    out = learn_norm(norm, rules, ev, _vocabulary(snap), to_config(tx.settings()).learn,
                      _allows(tx, action), given)
     names = [snap.objects[snap.ids.index(oid)].name for oid in object_ids]
     said: dict[Rule, dict[str, Any]] = {}
@@ -206,7 +206,7 @@ def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outc
         texts = list(tx.settings().get(key, []))
         if norm.text() not in texts:
             tx.set_setting(key, [*texts, norm.text()])
-    _save_rules(tx, action, out.rules, ev, names, now, said)
+    save_rules(tx, action, out.rules, ev, names, now, said)
     return out
 
 

@@ -10,9 +10,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ownctl.app.learning import save_rules
 from ownctl.app.settings import to_config
 from ownctl.experiment.mind import Mind, Switches
-from ownctl.logic.rules import Rule, parse_norm, parse_rule
+from ownctl.logic.rules import parse_norm, parse_rule
 from ownctl.logic.vocab import ACTIONS
 from ownctl.world.model import World
 
@@ -83,23 +84,6 @@ def save_mind(tx: Tx, mind: Mind, now: float, touched: list[int]) -> None:
             beliefs.append(entry)
     tx.write_beliefs(beliefs)
     for action, rules in mind.rules.items():
-        old = {r.text: r for r in tx.rules(action)}
-        given = set(mind.given[action])
-        fresh = [r for r in rules if r.text() not in old]
-        examples: dict[Rule, list[str]] = {}
-        if fresh:
-            ev, idx = mind.evidence(action)
-            for r in fresh:
-                covered = ev.prob(ev.truth(r)) >= 0.5
-                hits = zip(idx, covered, ev.positives, strict=True)
-                examples[r] = [mind.objects[i].name for i, c, pos in hits if c and pos]
-        tx.replace_rules(
-            action,
-            [
-                (r.text(), old[r.text()].origin, old[r.text()].provenance) if r.text() in old
-                else (r.text(), "given", {"given": r.text(), "during": "run"}) if r in given
-                else (r.text(), "learned", {"examples": examples[r], "learned_at": now, "during": "run"})
-                for r in rules
-            ],
-            now,
-        )
+        ev, idx = mind.evidence(action)
+        said = {r: {"given": r.text(), "during": "run"} for r in mind.given[action]}
+        save_rules(tx, action, rules, ev, [mind.objects[i].name for i in idx], now, said)

@@ -140,7 +140,7 @@ def set_object(
             setattr(row, key, value)
         if cats is not None:
             tx.set_categories(row.id, cats)
-        tx.session.flush()
+        tx.flush()
         after_claims(tx, [a.name for a in tx.agents()], ctx.now)  # percepts feed prediction and rules
     changed = sorted({"x": "position", "y": "position", "z": "position"}.get(k, k) for k in percepts)
     if cats is not None:

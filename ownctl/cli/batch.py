@@ -22,10 +22,8 @@ from typing import Annotated
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, State, emit
+from ownctl.cli.common import EXIT_FORBIDDEN, JsonOpt, QuietOpt, State, emit
 from ownctl.errors import OwnctlError
-
-EXIT_FORBIDDEN = 3
 
 
 def _lines(file: str) -> list[str]:

@@ -26,6 +26,9 @@ if TYPE_CHECKING:
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print exactly one JSON document on stdout.")]
 QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing but errors.")]
 
+EXIT_FORBIDDEN = 3  # check (and a question) answered "forbidden", as grep answers "no match"
+EXIT_FAILED = 4  # a task step or a scenario expectation failed
+
 
 @dataclass
 class State:

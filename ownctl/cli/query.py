@@ -6,12 +6,11 @@ from typing import Annotated
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.common import EXIT_FORBIDDEN, JsonOpt, QuietOpt, app_ctx, emit, fmt, table
 
 rules = typer.Typer(help="The forbid rules (given or learned).", no_args_is_help=True)
 perms = typer.Typer(help="Object-specific permissions.", no_args_is_help=True)
 
-EXIT_FORBIDDEN = 3
 
 
 def check(

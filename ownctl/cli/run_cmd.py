@@ -6,9 +6,8 @@ from typing import Annotated, Any
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit
+from ownctl.cli.common import EXIT_FAILED, JsonOpt, QuietOpt, app_ctx, emit
 
-EXIT_STEP_FAILED = 4
 MARKS = {"delivered": "[green]moved[/]", "skipped": "[yellow]left[/]", "done": "[dim]done[/]"}
 
 
@@ -73,4 +72,4 @@ def run(
 
     emit(data, json_out, quiet, human)
     if not result.ok:
-        raise typer.Exit(EXIT_STEP_FAILED)
+        raise typer.Exit(EXIT_FAILED)

@@ -6,10 +6,7 @@ from typing import Annotated
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit
-
-EXIT_FORBIDDEN = 3
-EXIT_STEP_FAILED = 4
+from ownctl.cli.common import EXIT_FAILED, EXIT_FORBIDDEN, JsonOpt, QuietOpt, app_ctx, emit
 
 
 def say(
@@ -47,7 +44,7 @@ def say(
 
     emit(report.data, json_out, quiet, human)
     if report.run is not None and not report.run.ok:
-        raise typer.Exit(EXIT_STEP_FAILED)
+        raise typer.Exit(EXIT_FAILED)
     if report.forbidden:
         raise typer.Exit(EXIT_FORBIDDEN)
 

@@ -9,13 +9,12 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, State, emit
+from ownctl.cli.common import EXIT_FAILED, JsonOpt, QuietOpt, State, emit
 
 if TYPE_CHECKING:
     from ownctl.app.context import AppContext
     from ownctl.world.scenario import Step
 
-EXIT_FAILED = 4
 
 scenario = typer.Typer(
     help="Scripted scenarios: a world, steps (say, command, run) and expected outcomes (TOML).",

@@ -83,6 +83,10 @@ class Tx:
             self.session.execute(insert(Ownership), [{"object_id": o, "agent_id": row.id} for o in ids])
         return row
 
+    def flush(self) -> None:
+        """Send pending changes of loaded rows (e.g. an object's new percepts) to the database."""
+        self.session.flush()
+
     def remove(self, row: Base) -> None:
         """Delete one row (an agent's or object's beliefs, touches and permissions cascade)."""
         self._agents = None
