@@ -30,7 +30,7 @@ from ownctl.config import LearnConfig
 from ownctl.learn.algebra import merge_rule, rule_diff, specialising
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.search import rule_search, sizes
-from ownctl.logic.rules import Norm, Rule
+from ownctl.logic.rules import ANY, Norm, Rule
 
 LABEL_NOISE = 0.003  # the instructor is almost always right about permissions
 LITERAL_PENALTY = 0.7  # nats per literal in the "ours" score
@@ -58,7 +58,10 @@ class Inducer:
 
     def __init__(self, action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig) -> None:
         self.action, self.ev, self.cfg = action, ev, cfg
-        self.atoms = vocab.atoms()
+        # agents the examples' worlds leave out (no ownership among the examples, or beyond the
+        # enumeration limit) cannot be told apart there, so rules do not name them
+        self.atoms = [a for a in vocab.atoms()
+                      if a.pred != "ownedBy" or a.arg == ANY or a.arg in ev.worlds.atoms]
         self.ours = cfg.learner == "ours"
 
     # -- helpers -------------------------------------------------------------------------------
