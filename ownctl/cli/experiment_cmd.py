@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from ownctl.errors import OwnctlError
+from ownctl.cli.common import JsonOpt, QuietOpt
 
 if TYPE_CHECKING:
     from ownctl.experiment.runner import ExperimentResult
@@ -33,10 +33,8 @@ WorldOpt = Annotated[
                  "blocks world, scenarios/paper-blocks.toml)."),
 ]
 LearnerOpt = Annotated[str, typer.Option("--learner", help="Rule learner: ours or paper.")]
-JsonOpt = Annotated[bool, typer.Option("--json", help="Print exactly one JSON document on stdout.")]
 CsvOpt = Annotated[str | None, typer.Option("--csv", metavar="FILE", help="Also write every figure as CSV.")]
 PlotOpt = Annotated[str | None, typer.Option("--plot", metavar="FILE.png", help="Also plot the metrics.")]
-QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="No progress bar and no tables.")]
 
 
 def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
@@ -44,14 +42,8 @@ def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, 
     from ownctl.app import experiment as app
 
     bar = None if quiet else _progress_bar(experiment)
-    try:
+    try:  # errors are reported by the command group, like every command's
         result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, bar)
-    except OwnctlError as exc:
-        message = " ".join(exc.message.split())
-        if json_out:
-            typer.echo(json.dumps({"error": message, "valid": exc.valid}, ensure_ascii=False))
-        typer.echo(f"ownctl: {message}", err=True)
-        raise typer.Exit(exc.exit_code) from None
     finally:
         if bar is not None:
             bar.stop()

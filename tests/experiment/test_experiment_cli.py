@@ -1,4 +1,4 @@
-"""``ownctl experiment ...`` through a local Typer app, and the app layer's world files."""
+"""``ownctl experiment ...`` through the ownctl command group, and the app layer's world files."""
 
 from __future__ import annotations
 
@@ -10,19 +10,17 @@ import sys
 from pathlib import Path
 
 import pytest
-import typer
 from typer.testing import CliRunner
 
 from ownctl.app import experiment as app_experiment
-from ownctl.cli.experiment_cmd import experiment_app
+from ownctl.cli.main import app as ownctl_app
 from ownctl.errors import OwnctlError
 
 ROOT = Path(__file__).resolve().parents[2]
 DESK = ROOT / "scenarios" / "desk-norms.toml"
 PAPER = ROOT / "scenarios" / "paper-blocks.toml"
 
-cli = typer.Typer()
-cli.add_typer(experiment_app, name="experiment")
+cli = ownctl_app  # the real command group: it reports errors as every command does
 
 
 def run(*args: str):
