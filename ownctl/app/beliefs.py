@@ -121,4 +121,4 @@ def after_claims(tx: Tx, agents: Sequence[str], now: float) -> None:
     from ownctl.app.learning import reinfer, repredict
 
     repredict(tx, agents, now)
-    reinfer(tx, now)
+    reinfer(tx, now, clear=False)  # priors changed, permissions did not

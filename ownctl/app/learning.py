@@ -103,7 +103,7 @@ def _evidence(
     ``perms`` and ``snap`` may be passed in when the caller already loaded them (all permissions,
     and a snapshot holding at least their objects).
     """
-    mine = [p for p in (tx.permissions() if perms is None else perms) if p.action == action]
+    mine = [p for p in (tx.permission_table() if perms is None else perms) if p.action == action]
     if snap is None:
         snap = snapshot(tx, now, induction_belief, ids=sorted({p.object_id for p in mine}))
     index = {oid: i for i, oid in enumerate(snap.ids)}
@@ -175,7 +175,7 @@ def learn_from_permission(
 
 def after_permission(tx: Tx, action: str, object_id: int, now: float) -> Outcome | None:
     """A permission was stored: gate and induction, then posteriors, on one snapshot of the examples."""
-    perms = tx.permissions()
+    perms = tx.permission_table()
     snap = snapshot(tx, now, induction_belief, ids=sorted({p.object_id for p in perms}))
     outcome = learn_from_permission(tx, action, object_id, now, perms, snap)
     # unchanged rules change no other object's posterior: only this object's evidence is new
@@ -212,24 +212,26 @@ def learn_from_norm(tx: Tx, norm: Norm, speaker: str | None, now: float) -> Outc
 
 def reinfer(
     tx: Tx, now: float, perms: Sequence[Any] | None = None, snap: Snapshot | None = None,
-    only: Sequence[int] | None = None,
+    only: Sequence[int] | None = None, clear: bool = True,
 ) -> None:
     """Posteriors for objects with permissions; NULL elsewhere (the prior stands).
 
     ``perms`` and ``snap`` (all permissions; a prior-belief snapshot of their objects) may be passed
     in when the caller already loaded them; ``only`` limits the work to those objects (when nothing
-    else changed).
+    else changed); ``clear=False`` skips clearing the posteriors of objects without permissions
+    (when no permission was removed, there are none to clear).
     """
     stored = tx.settings()
-    perms = tx.permissions() if perms is None else perms
+    perms = tx.permission_table() if perms is None else perms
     object_ids = sorted({p.object_id for p in perms})
     if stored.get("disabled.inference") or not perms:
         tx.clear_posteriors()
         return
-    if only is None:
+    if only is not None:
+        wanted_ids = set(only)
+        perms = [p for p in perms if p.object_id in wanted_ids]
+    elif clear:
         tx.clear_posteriors(keep=object_ids)
-    else:
-        perms = [p for p in perms if p.object_id in set(only)]
     rules: dict[str, list[Rule]] = {a: [] for a in ACTIONS}
     for row in tx.rules():
         rules[row.action].append(parse_rule(row.text))

@@ -317,6 +317,11 @@ class Tx:
             query = query.where(Permission.object_id == object_id)
         return list(self.session.scalars(query))
 
+    def permission_table(self) -> list[Any]:
+        """Every permission as a plain row (id, action, object_id, value), oldest first."""
+        cols = (Permission.id, Permission.action, Permission.object_id, Permission.value)
+        return list(self.session.execute(select(*cols).order_by(Permission.id)))
+
     def set_permission(
         self, action: str, object_id: int, value: float, speaker: str | None, now: float
     ) -> Permission:
