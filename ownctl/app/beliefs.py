@@ -92,7 +92,7 @@ def snapshot(
     if only is not None:
         ids = [tx.object(n).id for n in only]
     rows = tx.object_table(ids)
-    categories = tx.categories()
+    categories = tx.categories(ids)
     touched: dict[int, dict[str, float]] = {}
     for (oid, aid), time in tx.touches(object_ids=ids).items():
         touched.setdefault(oid, {})[agent_names[aid]] = time

@@ -175,7 +175,7 @@ def _atoms(tx: Any, row: Any) -> list[dict[str, Any]]:
 
 def _steps(tx: Any, row: Any, steps: list[dict[str, Any]], own: dict[str, float]) -> list[dict[str, Any]]:
     """The check's steps with each rule's origin and literal values, and each permission's row."""
-    categories = tx.categories().get(row.id, set())
+    categories = tx.categories([row.id]).get(row.id, set())
     areas = {a.name: a for a in tx.areas()}
     rule_rows = {r.id: r for r in tx.rules()}
     perms = {p.action: p for p in tx.permissions(row.id)}

@@ -120,11 +120,17 @@ class Tx:
             self.session.execute(insert(Ownership), [{"object_id": row.id, "agent_id": a} for a in ids])
         return row
 
-    def categories(self) -> dict[int, set[str]]:
-        """object id -> its categories."""
+    def categories(self, object_ids: Sequence[int] | None = None) -> dict[int, set[str]]:
+        """object id -> its categories (of every object, or only of ``object_ids``)."""
+        query = select(Category.object_id, Category.category)
+        queries = [query] if object_ids is None else [
+            query.where(Category.object_id.in_(list(object_ids)[start : start + CHUNK]))
+            for start in range(0, len(object_ids), CHUNK)
+        ]
         out: dict[int, set[str]] = {}
-        for oid, cat in self.session.execute(select(Category.object_id, Category.category)):
-            out.setdefault(oid, set()).add(cat)
+        for q in queries:
+            for oid, cat in self.session.execute(q):
+                out.setdefault(oid, set()).add(cat)
         return out
 
     def set_categories(self, object_id: int, categories: Iterable[str]) -> None:
