@@ -1,7 +1,8 @@
 """The settings a store keeps (`ownctl config`, `freeze`, `disable`): keys, validation, defaults.
 
 Keys: ``threshold`` and ``threshold.ACTION`` (obedience thresholds in [0, 1]), ``trust`` (in [0, 1]),
-``frozen.perms`` / ``frozen.rules`` and ``disabled.inference`` / ``disabled.prediction`` (booleans).
+``frozen.perms`` / ``frozen.rules`` and ``disabled.inference`` / ``disabled.prediction`` (booleans),
+``learner`` (the rule learner: ``ours`` or ``paper``).
 Stored values override the defaults of :class:`ownctl.config.Settings`.
 """
 
@@ -10,14 +11,16 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ownctl.config import Settings
+from ownctl.config import LearnConfig, Settings
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.vocab import ACTIONS
 
 FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.prediction")
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
-KEYS = (*PROBABILITIES, *FLAGS)
-DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust}
+LEARNERS = ("ours", "paper")
+KEYS = (*PROBABILITIES, *FLAGS, "learner")
+DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,
+                            "learner": Settings().learn.learner}
 TRUE = ("true", "yes", "on", "1")
 FALSE = ("false", "no", "off", "0")
 
@@ -45,6 +48,10 @@ def parse_value(key: str, text: str) -> Any:
     check_key(key)
     if text == "default":
         return None
+    if key == "learner":
+        if text not in LEARNERS:
+            raise BadValue(f"unknown learner {text!r}; valid learners: {', '.join(LEARNERS)}", LEARNERS)
+        return text
     if key in FLAGS:
         if text.lower() in TRUE:
             return True
@@ -56,7 +63,7 @@ def parse_value(key: str, text: str) -> Any:
 
 def effective(stored: dict[str, Any]) -> dict[str, Any]:
     """Every key with its value: stored, else default (per-action thresholds only when set)."""
-    out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k)) for k in ("threshold", "trust")}
+    out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k)) for k in ("threshold", "trust", "learner")}
     out.update({k: bool(stored.get(k, False)) for k in FLAGS})
     out.update({k: v for k, v in sorted(stored.items()) if k.startswith("threshold.")})
     return out
@@ -69,4 +76,5 @@ def to_config(stored: dict[str, Any]) -> Settings:
         threshold=float(stored.get("threshold", DEFAULTS["threshold"])),
         thresholds=thresholds,
         trust=float(stored.get("trust", DEFAULTS["trust"])),
+        learn=LearnConfig(learner=str(stored.get("learner", DEFAULTS["learner"]))),
     )

@@ -228,3 +228,11 @@ def test_db_commands(ownctl: Ownctl) -> None:
     current = ownctl.json("db", "current")
     assert current["current"] and current["revision"] == current["head"]
     assert ownctl.json("db", "upgrade")["to"] == current["head"]
+
+
+def test_the_store_can_use_the_papers_learner(table_world: Ownctl) -> None:
+    assert table_world.json("config", "get")["learner"] == "ours"
+    table_world("config", "set", "learner", "paper")
+    assert "valid learners: ours, paper" in table_world("config", "set", "learner", "magic", code=1).stderr
+    table_world("forbid", "trash", "on", "wallet")  # the paper's first example: the always-rule
+    assert [r["text"] for r in table_world.json("rules", "list")] == ["forbid trash"]
