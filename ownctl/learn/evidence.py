@@ -15,7 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ownctl.logic.frame import Frame
-from ownctl.logic.prob import enumerate_worlds
+from ownctl.logic.prob import atom_truth, enumerate_worlds
 from ownctl.logic.rules import ANY, Literal, Rule
 
 MAX_NAMED_AGENTS = 10
@@ -74,18 +74,9 @@ class Evidence:
     def literal(self, lit: Literal) -> np.ndarray:
         """(W, n) or broadcastable truth of a literal."""
         if lit not in self._cache:
-            w = self.worlds
-            if lit.pred == "ownedBy":
-                if lit.arg == ANY:
-                    base = w.bits.any(axis=1)[:, None] if w.atoms else np.zeros((1, 1), dtype=bool)
-                elif lit.arg in w.atoms:
-                    base = w.bits[:, w.atoms.index(lit.arg)][:, None]
-                else:
-                    base = np.zeros((1, 1), dtype=bool)
-            else:
-                base = self.frame.crisp(lit)[None, :]
+            base = atom_truth(lit, self.frame, self.worlds)
             value = ~base if lit.negated else base
-            self._cache[lit] = np.broadcast_to(value, (len(w.bits), self.n))
+            self._cache[lit] = np.broadcast_to(value, (len(self.worlds.bits), self.n))
         return self._cache[lit]
 
     def literal_stack(self, lits: Sequence[Literal]) -> np.ndarray:

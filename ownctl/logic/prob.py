@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ownctl.logic.frame import Frame
-from ownctl.logic.rules import ANY, Rule
+from ownctl.logic.rules import ANY, Literal, Rule
 
 OTHER = "*"  # the folded atom "owned by an agent no rule names"
 
@@ -74,27 +74,34 @@ def enumerate_worlds(frame: Frame, named: Sequence[str], with_other: bool) -> Wo
     return Worlds(atoms, bits, weights, p)
 
 
+def atom_truth(lit: Literal, frame: Frame, worlds: Worlds) -> np.ndarray:
+    """Truth of a literal's atom (its sign ignored), broadcastable to (W, n).
+
+    ``ownedBy AGENT`` is that agent's bit in each world ((W, 1)); ``ownedBy any`` is true in every
+    world where some atom is (the folded atom included); an agent the worlds do not name owns
+    nothing; crisp predicates are the objects' percepts ((1, n)).
+    """
+    if lit.pred != "ownedBy":
+        return frame.crisp(lit)[None, :]
+    width = len(worlds.bits)
+    if lit.arg == ANY:
+        return worlds.bits.any(axis=1)[:, None] if worlds.atoms else np.zeros((width, 1), dtype=bool)
+    if lit.arg in worlds.atoms:
+        return worlds.bits[:, worlds.atoms.index(lit.arg)][:, None]
+    return np.zeros((width, 1), dtype=bool)
+
+
 def rule_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarray:
     """(W, n) bool: does some rule's conjunction hold in world w for object i."""
     width = len(worlds.bits)
     out = np.zeros((width, frame.n), dtype=bool)
-    crisp_cache: dict[tuple[str, str], np.ndarray] = {}
-    index = {a: j for j, a in enumerate(worlds.atoms)}
-    any_owned = worlds.bits.any(axis=1)[:, None] if worlds.atoms else np.zeros((width, 1), dtype=bool)
+    atoms: dict[tuple[str, str], np.ndarray] = {}
     for rule in rules:
         holds = np.ones((width, frame.n), dtype=bool)
         for lit in rule.literals:
-            if lit.pred == "ownedBy":
-                if lit.arg == ANY:
-                    value = any_owned
-                elif lit.arg in index:
-                    value = worlds.bits[:, index[lit.arg]][:, None]
-                else:
-                    value = np.zeros((width, 1), dtype=bool)
-            else:
-                if lit.atom not in crisp_cache:
-                    crisp_cache[lit.atom] = frame.crisp(lit)[None, :]
-                value = crisp_cache[lit.atom]
+            if lit.atom not in atoms:
+                atoms[lit.atom] = atom_truth(lit, frame, worlds)
+            value = atoms[lit.atom]
             holds &= ~value if lit.negated else value
         out |= holds
     return out
