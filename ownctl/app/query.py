@@ -109,25 +109,28 @@ def list_rules(ctx: AppContext) -> list[dict[str, Any]]:
     """
     with ctx.read() as tx:
         rows = tx.rules()
-        permissions = tx.permissions()
-        objects = {o.id: o.name for o in tx.objects()}
-        wanted = sorted({objects[p.object_id] for p in permissions})
-        snap = snapshot(tx, ctx.now, only=wanted) if wanted else None
-    frame = snap.frame() if snap is not None else None
-    index = {name: i for i, name in enumerate(wanted)}
+        permissions = tx.permission_table()
+        ids = sorted({p.object_id for p in permissions})
+        snap = snapshot(tx, ctx.now, ids=ids) if ids else None
+    index = {oid: i for i, oid in enumerate(ids)}
+    evidence: dict[str, tuple[Any, np.ndarray]] = {}  # action -> (frame of its examples, their values)
+    whole: dict[str, float] = {}
+    for action in sorted({r.action for r in rows}):
+        mine = [p for p in permissions if p.action == action]
+        if mine and snap is not None:
+            sub = snap.frame().take([index[p.object_id] for p in mine])
+            values = np.array([p.value for p in mine])
+            evidence[action] = (sub, values)
+            rules = [parse_rule(r.text) for r in rows if r.action == action]
+            whole[action] = float(1.0 - np.abs(values - p_forbidden(rules, sub)).mean())
     out = []
     for row in rows:
-        rule = parse_rule(row.text)
-        mine = [p for p in permissions if p.action == row.action]
         entry = {"id": row.id, "text": row.text, "action": row.action, "origin": row.origin}
         entry.update(accuracy=None, set_accuracy=None, provenance=row.provenance, created=row.created)
-        if mine and frame is not None:
-            idx = [index[objects[p.object_id]] for p in mine]
-            sub = frame.take(idx)
-            values = np.array([p.value for p in mine])
-            whole = p_forbidden([parse_rule(r.text) for r in rows if r.action == row.action], sub)
-            entry["accuracy"] = float(1.0 - np.abs(values - p_forbidden([rule], sub)).mean())
-            entry["set_accuracy"] = float(1.0 - np.abs(values - whole).mean())
+        if row.action in evidence:
+            sub, values = evidence[row.action]
+            entry["accuracy"] = float(1.0 - np.abs(values - p_forbidden([parse_rule(row.text)], sub)).mean())
+            entry["set_accuracy"] = whole[row.action]
         out.append(entry)
     return out
 
