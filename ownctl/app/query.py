@@ -22,23 +22,19 @@ def owners(ctx: AppContext, obj: str) -> dict[str, Any]:
     """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}]}``, likeliest
     first; ``p`` and ``source`` are the decision belief."""
     with ctx.read() as tx:
-        row = tx.object(obj)
-        names = {a.id: a.name for a in tx.agents()}
-        out: list[dict[str, Any]] = []
-        for b in tx.ownership(object_id=row.id):
-            p, source = decision_belief(b)
-            out.append(
-                {
-                    "agent": names[b.agent_id],
-                    "p": p,
-                    "source": source,
-                    "claim": b.claim_p,
-                    "prior": b.prior_p,
-                    "posterior": b.posterior_p,
-                }
-            )
+        return {"object": obj, "owners": owner_rows(tx, tx.object(obj).id)}
+
+
+def owner_rows(tx: Any, object_id: int) -> list[dict[str, Any]]:
+    """Every agent's beliefs about one object, likeliest owner first (inside the caller's transaction)."""
+    names = {a.id: a.name for a in tx.agents()}
+    out: list[dict[str, Any]] = []
+    for b in tx.ownership(object_id=object_id):
+        p, source = decision_belief(b)
+        out.append({"agent": names[b.agent_id], "p": p, "source": source, "claim": b.claim_p,
+                    "prior": b.prior_p, "posterior": b.posterior_p})
     out.sort(key=lambda o: (-o["p"], o["agent"]))
-    return {"object": obj, "owners": out}
+    return out
 
 
 def owned_by(ctx: AppContext, agent: str, min_p: float = 0.5) -> list[dict[str, Any]]:

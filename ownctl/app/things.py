@@ -177,17 +177,17 @@ def list_objects(ctx: AppContext) -> list[dict[str, Any]]:
 
 def show_object(ctx: AppContext, name: str) -> dict[str, Any]:
     """One object: percepts, permissions and resolved ownership beliefs."""
-    from ownctl.app.query import owners
+    from ownctl.app.query import owner_rows
 
     with ctx.read() as tx:
         row = tx.object(name)
         names = {a.id: a.name for a in tx.agents()}
-        touches = {names[a]: t for (o, a), t in tx.touches().items() if o == row.id}
-        out = _object_dict(row, tx.categories().get(row.id, set()), touches)
+        touches = {names[a]: t for (_, a), t in tx.touches(object_ids=[row.id]).items()}
+        out = _object_dict(row, tx.categories([row.id]).get(row.id, set()), touches)
         out["permissions"] = [
             {"id": p.id, "action": p.action, "value": p.value} for p in tx.permissions(row.id)
         ]
-    out["owners"] = owners(ctx, name)["owners"]
+        out["owners"] = owner_rows(tx, row.id)
     return out
 
 
