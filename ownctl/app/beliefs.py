@@ -88,14 +88,11 @@ def snapshot(
     Reads plain rows (not ORM objects), so a snapshot of many objects stays cheap.
     """
     agents = tx.agents()
-    agent_names = {a.id: a.name for a in agents}
     if only is not None:
         ids = [tx.object(n).id for n in only]
     rows = tx.object_table(ids)
     categories = tx.categories(ids)
-    touched: dict[int, dict[str, float]] = {}
-    for (oid, aid), time in tx.touches(object_ids=ids).items():
-        touched.setdefault(oid, {})[agent_names[aid]] = time
+    touched = tx.touch_times(ids)
     column = {a.id: j for j, a in enumerate(agents)}
     index = {r.id: i for i, r in enumerate(rows)}
     own = np.zeros((len(rows), len(agents)))

@@ -135,13 +135,12 @@ class Interrupting:
 
 def teach_utterance(mind: Mind, hit: Interrupt, attempt: Attempt) -> bool:
     """Apply an utterance's instructions to the Mind; True if it asks the robot to stop."""
-    from ownctl.app.say import order
-    from ownctl.language import Claim, Context, NormInstruction, Permission, Skip, understand
+    from ownctl.language import Claim, Context, NormInstruction, Permission, Skip, teaching_order, understand
 
     ctx = Context(speaker=hit.speaker, about=hit.object, action=attempt.task.action,
                   agents=frozenset(mind.agents), objects=frozenset(o.name for o in mind.objects))
     stop = False
-    for _, ins in order(understand(hit.utterance, ctx).instructions):
+    for _, ins in teaching_order(understand(hit.utterance, ctx).instructions):
         if isinstance(ins, Claim):
             mind.claim(mind.index[ins.object], ins.agent, ins.probability, exclusive=ins.exclusive)
         elif isinstance(ins, Permission):

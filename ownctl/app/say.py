@@ -19,7 +19,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ownctl.app.context import AppContext
-from ownctl.errors import OwnctlError
 from ownctl.language import (
     AskOwner,
     AskPermitted,
@@ -33,6 +32,7 @@ from ownctl.language import (
     RunTask,
     Skip,
     Understanding,
+    teaching_order,
     understand,
 )
 from ownctl.language.lexicon import COLORS
@@ -197,36 +197,11 @@ class _Turn:
         return f"{ins.task} starts once this utterance is stored", {"task": ins.task}  # then: its report
 
 
-def order(instructions: tuple[Instruction, ...]) -> list[tuple[int, Instruction]]:
-    """The order instructions are applied in: as understood, except that in a run of permissions and
-    norms the norms go first, so a norm given in the same breath explains its example ("No, that's
-    mine!": the norm ``forbid trash if ownedBy me`` is stored before ``forbid trash on that``, and the
-    example then agrees with it instead of inducing an "always forbid" rule from one example)."""
-    out: list[tuple[int, Instruction]] = []
-    run: list[tuple[int, Instruction]] = []
-    for item in [*enumerate(instructions), (len(instructions), None)]:
-        if isinstance(item[1], Permission | NormInstruction):
-            run.append(item)  # type: ignore[arg-type]
-            continue
-        out += [x for x in run if isinstance(x[1], NormInstruction)]
-        out += [x for x in run if isinstance(x[1], Permission)]
-        run = []
-        if item[1] is not None:
-            out.append(item)  # type: ignore[arg-type]
-    return out
-
-
 def run_function() -> Callable[..., Any]:
-    """The task runner of :mod:`ownctl.app.run`; an OwnctlError if it is not installed."""
-    try:
-        from ownctl.app import run as runner
-    except ImportError as exc:
-        raise OwnctlError(f"running tasks needs ownctl.app.run, which is not available ({exc})") from None
-    for name in ("run_task", "run"):  # the app-level runner, not the task loop it imports
-        found = getattr(runner, name, None)
-        if callable(found) and getattr(found, "__module__", "") == runner.__name__:
-            return found  # type: ignore[no-any-return]
-    raise OwnctlError("running tasks needs ownctl.app.run.run_task, which is not available")
+    """The task runner (:func:`ownctl.app.run.run`), imported when a task is asked for."""
+    from ownctl.app.run import run
+
+    return run
 
 
 def say(
@@ -252,7 +227,7 @@ def say(
         with ctx.write(payload, actor=lctx.speaker) as tx:
             ctx.interface = "say"
             done: dict[int, dict[str, Any]] = {}
-            for i, ins in order(understood.instructions):
+            for i, ins in teaching_order(understood.instructions):
                 ctx.command = ins.text()
                 done[i] = turn.apply(ins)
             report.results = [done[i] for i in sorted(done)]  # shown in the order understood
@@ -279,4 +254,4 @@ def _run_summary(data: dict[str, Any]) -> str:
             f"{data['mistakes']} mistakes.")
 
 
-__all__ = ["SayReport", "language_context", "order", "run_function", "say"]
+__all__ = ["SayReport", "language_context", "run_function", "say"]

@@ -167,11 +167,8 @@ def _object_dict(row: Any, categories: set[str], touches: dict[str, float]) -> d
 def list_objects(ctx: AppContext) -> list[dict[str, Any]]:
     """Every object with its percepts; ``last_touch`` maps agents to absolute store times."""
     with ctx.read() as tx:
-        names = {a.id: a.name for a in tx.agents()}
         cats = tx.categories()
-        touched: dict[int, dict[str, float]] = {}
-        for (oid, aid), t in tx.touches().items():
-            touched.setdefault(oid, {})[names[aid]] = t
+        touched = tx.touch_times()
         return [_object_dict(o, cats.get(o.id, set()), touched.get(o.id, {})) for o in tx.objects()]
 
 
@@ -181,8 +178,7 @@ def show_object(ctx: AppContext, name: str) -> dict[str, Any]:
 
     with ctx.read() as tx:
         row = tx.object(name)
-        names = {a.id: a.name for a in tx.agents()}
-        touches = {names[a]: t for (_, a), t in tx.touches(object_ids=[row.id]).items()}
+        touches = tx.touch_times([row.id]).get(row.id, {})
         out = _object_dict(row, tx.categories([row.id]).get(row.id, set()), touches)
         out["permissions"] = [
             {"id": p.id, "action": p.action, "value": p.value} for p in tx.permissions(row.id)

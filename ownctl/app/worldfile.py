@@ -77,9 +77,7 @@ def current_world(ctx: AppContext, name: str = "") -> World:
     with ctx.read() as tx:
         agents = {a.id: a.name for a in tx.agents()}
         categories = tx.categories()
-        touched: dict[int, dict[str, float]] = {}
-        for (oid, aid), t in tx.touches().items():
-            touched.setdefault(oid, {})[agents[aid]] = t
+        touched = tx.touch_times()
         rows = tx.objects()
         objects = tuple(
             object_spec(o, categories.get(o.id, set()), touched.get(o.id, {}), ctx.now) for o in rows

@@ -11,8 +11,8 @@ from collections.abc import Sequence
 import numpy as np
 
 from ownctl.logic.frame import Frame
-from ownctl.logic.prob import p_forbidden
-from ownctl.logic.rules import ANY, Rule, parse_rule
+from ownctl.logic.prob import p_forbidden, relevant_atoms
+from ownctl.logic.rules import Rule, parse_rule
 from ownctl.world.model import ObjectSpec, World, make_frame
 
 
@@ -48,13 +48,8 @@ class TrueNorms:
 
     def referenced_agents(self, steps: Sequence[str]) -> tuple[str, ...]:
         """Agents named by ownedBy literals of the steps' true rules (``any`` = all), in world order."""
-        named: set[str] = set()
-        for s in steps:
-            for rule in self.rules.get(s, ()):
-                for lit in rule.literals:
-                    if lit.pred == "ownedBy":
-                        named.update(self.world.agents if lit.arg == ANY else (lit.arg,))
-        return tuple(a for a in self.world.agents if a in named)
+        named, uses_any = relevant_atoms(self.rules.get(s, ()) for s in steps)
+        return tuple(a for a in self.world.agents if uses_any or a in named)
 
     def owner_row(self, i: int) -> np.ndarray:
         """True ownership of object ``i`` per agent (world agent order)."""

@@ -21,11 +21,13 @@ from ownctl.language.instructions import (
     Request,
     RunTask,
     Skip,
+    teaching_order,
 )
 from ownctl.language.normalize import normalize
 from ownctl.language.understand import RULES, understand
 
 __all__ = [
+    "teaching_order",
     "RULES",
     "TASKS",
     "AskOwner",

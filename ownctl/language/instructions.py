@@ -204,3 +204,22 @@ class RunTask:
 Instruction = (
     Claim | Permission | NormInstruction | Introduce | Skip | AskOwner | AskPermitted | AskWhy | RunTask
 )
+
+
+def teaching_order(instructions: tuple[Instruction, ...]) -> list[tuple[int, Instruction]]:
+    """The order instructions are applied in: as understood, except that in a run of permissions and
+    norms the norms go first, so a norm given in the same breath explains its example ("No, that's
+    mine!": the norm ``forbid trash if ownedBy me`` is stored before ``forbid trash on that``, and the
+    example then agrees with it instead of inducing an "always forbid" rule from one example)."""
+    out: list[tuple[int, Instruction]] = []
+    run: list[tuple[int, Instruction]] = []
+    for item in [*enumerate(instructions), (len(instructions), None)]:
+        if isinstance(item[1], Permission | NormInstruction):
+            run.append(item)  # type: ignore[arg-type]
+            continue
+        out += [x for x in run if isinstance(x[1], NormInstruction)]
+        out += [x for x in run if isinstance(x[1], Permission)]
+        run = []
+        if item[1] is not None:
+            out.append(item)  # type: ignore[arg-type]
+    return out

@@ -158,6 +158,14 @@ class Tx:
             out.update({(o, a): t for o, a, t in self.session.execute(chunk)})
         return out
 
+    def touch_times(self, object_ids: Sequence[int] | None = None) -> dict[int, dict[str, float]]:
+        """object id -> {agent name: absolute time of its last interaction} (optionally some objects)."""
+        names = {a.id: a.name for a in self.agents()}
+        out: dict[int, dict[str, float]] = {}
+        for (oid, aid), time in self.touches(object_ids=object_ids).items():
+            out.setdefault(oid, {})[names[aid]] = time
+        return out
+
     def touch(self, object_id: int, agent_id: int, time: float) -> None:
         """Record that an agent interacted with an object at ``time`` (absolute store time)."""
         row = self.session.get(Touch, (object_id, agent_id))

@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 import re
 import shlex
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -26,6 +26,7 @@ from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.names import is_name
 from ownctl.logic.rules import parse_norm
 from ownctl.logic.vocab import ACTIONS
+from ownctl.world.spec import check_table
 
 STEP_KEYS = ("say", "as", "about", "command", "run", "instructor", "interrupt", "expect")
 INTERRUPT_KEYS = ("before", "say", "as")
@@ -132,15 +133,6 @@ class Scenario:
     steps: tuple[Step, ...]
 
 
-def _table(source: str, where: str, table: Any, valid: Sequence[str]) -> Mapping[str, Any]:
-    if not isinstance(table, Mapping):
-        raise BadValue(f"{source}: {where} must be a table, got {table!r}")
-    for key in table:
-        if key not in valid:
-            raise BadValue(f"{source}: unknown key {key!r} in {where}; valid keys: {', '.join(valid)}", valid)
-    return table
-
-
 def _text(source: str, where: str, key: str, value: Any) -> str:
     if not isinstance(value, str) or not value.strip():
         raise BadValue(f"{source}: {where}: {key} must be a non-empty string, got {value!r}")
@@ -204,7 +196,7 @@ def parse_expectation(line: Any, source: str = "<scenario>", where: str = "expec
 
 
 def _interrupt(source: str, where: str, table: Any) -> Interruption:
-    table = _table(source, where, table, INTERRUPT_KEYS)
+    table = check_table(source, where, table, INTERRUPT_KEYS)
     missing = [k for k in INTERRUPT_KEYS if k not in table]
     if missing:
         raise BadValue(f"{source}: {where} needs {', '.join(missing)} (keys: {', '.join(INTERRUPT_KEYS)})",
@@ -236,7 +228,7 @@ def _words(source: str, where: str, line: str) -> tuple[str, ...]:
 def parse_step(source: str, number: int, table: Any) -> Step:
     """Step ``number`` (1-based) of ``source``."""
     where = f"step {number}"
-    table = _table(source, where, table, STEP_KEYS)
+    table = check_table(source, where, table, STEP_KEYS)
     kinds = [k for k in KINDS if k in table]
     if len(kinds) != 1:
         raise BadValue(f"{source}: {where} must have exactly one of {', '.join(KINDS)}, got "

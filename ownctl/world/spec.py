@@ -25,7 +25,9 @@ AREA_KEYS = ("name", "box")
 OBJECT_KEYS = ("name", "color", "position", "categories", "owners", "last_touch")
 
 
-def _keys(source: str, where: str, table: Any, valid: Sequence[str]) -> Mapping[str, Any]:
+def check_table(source: str, where: str, table: Any, valid: Sequence[str]) -> Mapping[str, Any]:
+    """``table`` if it is a TOML table whose keys are all in ``valid``; else an error naming the file,
+    the place and the valid keys."""
     if not isinstance(table, Mapping):
         raise BadValue(f"{source}: {where} must be a table, got {type(table).__name__}")
     for key in table:
@@ -58,7 +60,7 @@ def _per_agent(
     source: str, where: str, table: Any, agents: Sequence[str], low: float, high: float
 ) -> dict[str, float]:
     out: dict[str, float] = {}
-    for agent, value in _keys(source, where, table, agents).items():
+    for agent, value in check_table(source, where, table, agents).items():
         number = value if isinstance(value, int | float) and not isinstance(value, bool) else math.nan
         if not low <= number <= high:  # NaN fails too
             raise BadValue(
@@ -70,7 +72,7 @@ def _per_agent(
 
 def _area(source: str, i: int, table: Any) -> Area:
     where = f"[[areas]] #{i + 1}"
-    table = _keys(source, where, table, AREA_KEYS)
+    table = check_table(source, where, table, AREA_KEYS)
     if "name" not in table or "box" not in table:
         raise BadValue(f"{source}: {where} needs name and box")
     x0, y0, x1, y1 = _numbers(source, f"{where} box", table["box"], (4,))
@@ -81,7 +83,7 @@ def _area(source: str, i: int, table: Any) -> Area:
 
 def _object(source: str, i: int, table: Any, agents: Sequence[str]) -> tuple[ObjectSpec, dict[str, float]]:
     where = f"[[objects]] #{i + 1}"
-    table = _keys(source, where, table, OBJECT_KEYS)
+    table = check_table(source, where, table, OBJECT_KEYS)
     if "name" not in table:
         raise BadValue(f"{source}: {where} needs a name")
     name = _name(source, "object", table["name"])
@@ -148,7 +150,7 @@ def world_from_dict(data: Mapping[str, Any], source: str, rng: Any = None) -> Wo
     used unless the file gives ``agents`` / ``norms`` itself; explicit areas and objects are added
     to the generated ones and replace those of the same name.
     """
-    data = _keys(source, "the file", data, TOP_KEYS)
+    data = check_table(source, "the file", data, TOP_KEYS)
     raw_agents = data.get("agents", [])
     if not isinstance(raw_agents, list):
         raise BadValue(f"{source}: agents must be a list of names, got {raw_agents!r}")

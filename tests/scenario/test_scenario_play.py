@@ -27,8 +27,8 @@ def play(*args: str, code: int | None = 0) -> Result:
     return result
 
 
-def interrupts_teach_norms_first() -> bool:
-    """Whether the task runner teaches a reprimand's norm before its permission (see test below)."""
+def test_a_reprimand_during_a_run_teaches_its_norm_before_its_permission() -> None:
+    """Otherwise one example would induce 'forbid trash' first and the norm would be dropped."""
     from ownctl.app.run import Interrupt, teach_utterance
     from ownctl.experiment.mind import Mind
     from ownctl.experiment.task import Attempt, get_task
@@ -38,18 +38,13 @@ def interrupts_teach_norms_first() -> bool:
     mind = Mind(("xuan",), [ObjectSpec("mug", "red", (0.0, 0.0, 0.0))], ())
     attempt = Attempt(get_task("trashAll"), 0, "mug", ("find", "pickUp", "trash"), True, ())
     teach_utterance(mind, Interrupt("trash", "mug", "No, that's mine!", "xuan"), attempt)
-    return mind.rules["trash"] == (parse_rule("forbid trash if ownedBy xuan"),)
+    assert mind.rules["trash"] == (parse_rule("forbid trash if ownedBy xuan"),)
 
 
 @pytest.mark.parametrize("path", PLAYED, ids=[p.stem for p in PLAYED])
 def test_every_scenario_passes(path: Path) -> None:
     result = play(str(path), "--json", code=None)
     data = json.loads(result.stdout)
-    interrupted = any(s.get("interrupt") for s in tomllib.loads(path.read_text())["steps"])
-    if not data["passed"] and interrupted and not interrupts_teach_norms_first():
-        pytest.xfail("ownctl.app.run.teach_utterance applies a reprimand's permission before its norm, "
-                     "so one example induces 'forbid trash' first; it should apply norms first "
-                     "(ownctl.app.say.order)")
     failed = [(s["step"], e) for s in data["steps"] for e in s["expectations"] if not e["ok"]]
     errors = [(s["step"], s["error"]) for s in data["steps"] if s["error"]]
     assert data["passed"] and result.exit_code == 0, (failed, errors)
