@@ -55,11 +55,9 @@ def run_line(ctx: AppContext, step: Step) -> tuple[int, str, str]:
 
 def _global_db(ctx: typer.Context) -> str | None:
     """The global --db when given on the command line (OWNCTL_DB alone does not pick the store)."""
-    from click.core import ParameterSource
-
     root = ctx.find_root()
-    source = root.get_parameter_source("db")
-    if source is not None and source.name == ParameterSource.COMMANDLINE.name:
+    source = root.get_parameter_source("db")  # an enum of typer's own copy of click
+    if source is not None and source.name == "COMMANDLINE":
         return root.params.get("db")
     return None
 
