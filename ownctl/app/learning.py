@@ -174,12 +174,18 @@ def learn_from_permission(
 
 
 def after_permission(tx: Tx, action: str, object_id: int, now: float) -> Outcome | None:
-    """A permission was stored: gate and induction, then posteriors, on one snapshot of the examples."""
+    """A permission was stored: gate and induction on this action's examples, then posteriors.
+
+    Unchanged rules change no other object's posterior, so then only this object is re-inferred,
+    from the same snapshot; new rules re-infer every object with permissions.
+    """
     perms = tx.permission_table()
-    snap = snapshot(tx, now, induction_belief, ids=sorted({p.object_id for p in perms}))
+    snap = snapshot(tx, now, induction_belief, ids=sorted({p.object_id for p in perms if p.action == action}))
     outcome = learn_from_permission(tx, action, object_id, now, perms, snap)
-    # unchanged rules change no other object's posterior: only this object's evidence is new
-    reinfer(tx, now, perms, snap, only=None if outcome is not None and outcome.induced else [object_id])
+    if outcome is not None and outcome.induced:
+        reinfer(tx, now, perms)
+    else:
+        reinfer(tx, now, perms, snap, only=[object_id])
     return outcome
 
 
