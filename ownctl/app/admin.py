@@ -1,21 +1,20 @@
 """Administration: creating and upgrading the store, settings, resets, freezing and switches.
 
 ``reset`` keeps the world (agents, objects, areas), the ground truth, the settings and the event
-log: ``perms`` forgets permissions, ``rules`` the rules, ``claims`` every ownership belief (claims
-and the priors and posteriors derived from them), ``all`` all of these and the conversation context.
+log: ``perms`` forgets permissions, ``rules`` the rules (forbid rules and allow norms), ``claims``
+every claim (priors return to the calibrated base rate), ``all`` all of these and the conversation
+context. Resets and switches are instructions of the Mind, so predictions and posteriors follow.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
-from ownctl.app.learning import reinfer
+from ownctl.app.mindstore import changing
 from ownctl.app.settings import FLAGS, check_key, effective, parse_value
 from ownctl.errors import OwnctlError
-
-RESETS = ("perms", "rules", "claims", "all")
+from ownctl.mind import RESETS
 
 
 def init(ctx: AppContext) -> Done:
@@ -92,12 +91,8 @@ def set_flag(ctx: AppContext, key: str, on: bool) -> Done:
     """freeze/unfreeze perms|rules, disable/enable inference|prediction."""
     if key not in FLAGS:
         raise OwnctlError(f"unknown switch {key!r}; valid: {', '.join(FLAGS)}", FLAGS)
-    with ctx.write({"op": "flag", "key": key, "value": on}) as tx:
-        tx.set_setting(key, on or None)
-        if key == "disabled.prediction" and not on:
-            after_claims(tx, [a.name for a in tx.agents()], ctx.now)  # predictions catch up
-        elif key == "disabled.inference":
-            reinfer(tx, ctx.now)  # posteriors appear or go at once
+    with changing(ctx, {"op": "flag", "key": key, "value": on}) as (_, mind):
+        mind.set_switch(key, on)
     kind, what = key.split(".")
     word = {"frozen": ("frozen", "unfrozen"), "disabled": ("disabled", "enabled")}[kind][0 if on else 1]
     return Done(f"{what} {word}", {"key": key, "value": on})
@@ -109,18 +104,8 @@ def reset(ctx: AppContext, what: str, yes: bool) -> Done:
         raise OwnctlError(f"unknown reset {what!r}; valid: {', '.join(RESETS)}", RESETS)
     if not yes:
         raise OwnctlError(f"reset {what} deletes data; repeat with --yes to confirm")
-    counts: dict[str, int] = {}
-    with ctx.write({"op": "reset", "what": what}) as tx:
-        if what in ("perms", "all"):
-            counts["permissions"] = tx.clear("perms")
-        if what in ("rules", "all"):
-            counts["rules"] = tx.clear("rules")
-        if what in ("claims", "all"):
-            counts["claims"] = sum(1 for b in tx.belief_table() if b.claim_p is not None)
-            tx.clear_beliefs(("claim", "prior", "posterior"))
-            after_claims(tx, [a.name for a in tx.agents()], ctx.now)  # back to the calibrated priors
-        else:
-            reinfer(tx, ctx.now)  # posteriors follow the remaining permissions and rules
+    with changing(ctx, {"op": "reset", "what": what}) as (tx, mind):
+        counts = mind.reset(what)
         if what == "all":
             tx.clear("context")
     listing = ", ".join(f"{n} {k}" for k, n in counts.items())

@@ -1,4 +1,6 @@
-"""``check ACTION OBJ``: is the action permitted on the object, and what decided it (DESIGN section 3).
+"""``check ACTION OBJ``: is the action permitted on the object, and what decided it.
+
+See ``docs/architecture.md`` for the vocabulary and the JSON shape.
 
 Every step of the action (its prerequisites, then the action; ``Action.steps``) is decided on its
 own: the object-specific permission for that step when there is one (forbidden iff its value is at
@@ -17,16 +19,13 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from ownctl.app.beliefs import snapshot
+from ownctl.app.beliefs import belief_sources
 from ownctl.app.context import AppContext
-from ownctl.app.settings import to_config
-from ownctl.config import LearnConfig
+from ownctl.app.mindstore import load
 from ownctl.logic.prob import p_forbidden
-from ownctl.logic.rules import parse_rule
 from ownctl.logic.vocab import ACTIONS
 from ownctl.logic.vocab import action as check_action
-
-PERMISSION_CUT = LearnConfig().cover_threshold  # a permission value at or above this forbids
+from ownctl.mind import Mind
 
 
 @dataclass(frozen=True)
@@ -42,27 +41,29 @@ class CheckReport:
         return bool(self.data["decision"] == "forbidden")
 
 
-def _step(step: str, permission: Any, rules: list[Any], frame: Any, threshold: float) -> dict[str, Any]:
-    parsed = [parse_rule(r.text) for r in rules]
-    per_rule = [
-        {"id": r.id, "text": r.text, "p": float(p_forbidden([rule], frame)[0])}
-        for r, rule in zip(rules, parsed, strict=False)
-    ]
-    p_rules = float(p_forbidden(parsed, frame)[0]) if parsed else 0.0
-    if permission is not None:
-        decided_by, p, forbidden = "permission", float(permission.value), permission.value >= PERMISSION_CUT
-    elif parsed:
-        decided_by, p, forbidden = "rules", p_rules, p_rules >= threshold
+def _step(mind: Mind, step: str, permission_id: int | None, rule_ids: dict[str, int]) -> dict[str, Any]:
+    """One step of the decision on the Mind's (only) object, as the report shows it."""
+    frame = mind.frame()
+    given = mind.permission(step, 0)
+    rules = mind.rules[step]
+    per_rule = [{"id": rule_ids.get(r.text()), "text": r.text(), "p": float(p_forbidden([r], frame)[0])}
+                for r in rules]
+    p_rules = float(mind.p_forbidden(step)[0])
+    forbidden = mind.forbidden(step, 0)
+    if given is not None:
+        decided_by, p = "permission", float(given.value)
+    elif rules:
+        decided_by, p = "rules", p_rules
     else:
-        decided_by, p, forbidden = "none", 0.0, False
+        decided_by, p = "none", 0.0
     return {
         "action": step,
         "decision": "forbidden" if forbidden else "permitted",
         "decided_by": decided_by,
         "p_forbidden": p,
-        "threshold": threshold,
-        "permission": None if permission is None else float(permission.value),
-        "permission_id": None if permission is None else permission.id,
+        "threshold": mind.settings.threshold_for(step),
+        "permission": None if given is None else float(given.value),
+        "permission_id": None if given is None else permission_id,
         "p_rules": p_rules,
         "rules": per_rule,
     }
@@ -99,16 +100,16 @@ def check(ctx: AppContext, action: str, obj: str, record: bool = True) -> CheckR
     act = check_action(action)
     with ctx.read() as tx:
         row = tx.object(obj)
-        settings = to_config(tx.settings())
-        snap = snapshot(tx, ctx.now, only=[obj])
-        frame = snap.frame()
-        permissions = {p.action: p for p in tx.permissions(row.id)}
+        mind = load(tx, ctx.now, only=[obj]).mind
+        settings = mind.settings
+        beliefs, sources = mind.posterior()[0], belief_sources(mind, 0)
+        permissions = {p.action: p.id for p in tx.permissions(row.id)}
+        rule_ids = {r.text: r.id for r in tx.rules()}
         steps = []
         for name in act.steps:
-            rules = tx.rules(name)
-            if ACTIONS[name].target != "object" and not rules and name not in permissions:
+            if ACTIONS[name].target != "object" and not mind.rules[name] and name not in permissions:
                 continue
-            steps.append(_step(name, permissions.get(name), rules, frame, settings.threshold_for(name)))
+            steps.append(_step(mind, name, permissions.get(name), rule_ids))
     own = [s for s in steps if s["action"] == action]
     prereq = [s for s in steps if s["action"] != action]
     forbidden_prereq = [s for s in prereq if s["decision"] == "forbidden"]
@@ -135,8 +136,7 @@ def check(ctx: AppContext, action: str, obj: str, record: bool = True) -> CheckR
         "reason": reason,
         "steps": steps,
         "atoms": [
-            {"agent": a, "p": float(snap.own[0, j]), "source": snap.sources[0][j]}
-            for j, a in enumerate(snap.agents)
+            {"agent": a, "p": float(beliefs[j]), "source": sources[j]} for j, a in enumerate(mind.agents)
         ],
     }
     report = CheckReport(data, reason)

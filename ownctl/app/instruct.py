@@ -1,24 +1,23 @@
-"""Instructions: ownership claims, object-specific permissions and norms (DESIGN sections 2-4).
+"""Instructions: ownership claims, object-specific permissions and norms (``docs/architecture.md``).
 
-One function per use case; each is one transaction with one event-log entry, and calls the belief
-hooks of :mod:`ownctl.app.beliefs`, where prediction, inference and rule induction plug in.
+One function per use case; each is one transaction with one event-log entry: load the Mind the
+instruction needs, call it (:class:`ownctl.mind.Mind` runs prediction, the gate, induction and
+inference), save what changed (:mod:`ownctl.app.mindstore`).
 
 - :func:`add_claim`: ``p_stored = trust * p`` (or ``1 - trust * p`` for "not mine"); an exclusive
   claim sets every other agent's claim to 0.
 - :func:`add_permission`: ``forbid|allow ACTION on OBJ`` (value 1.0 / 0.0; soft values allowed);
   refused while permissions are frozen.
-- :func:`add_norm`: ``forbid ACTION if ...`` is stored as a given rule; ``allow ACTION if ...`` is
-  logged, to be subtracted from the forbid rules by the learner (paper, Algorithm 4). Refused while
-  rules are frozen.
+- :func:`add_norm`: ``forbid ACTION if ...`` (cover rule) or ``allow ACTION if ...`` (uncover rule);
+  refused while rules are frozen.
 """
 
 from __future__ import annotations
 
 from typing import Any
 
-from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
-from ownctl.app.learning import after_permission, learn_from_norm, reinfer
+from ownctl.app.mindstore import changing
 from ownctl.app.settings import probability
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
@@ -46,16 +45,10 @@ def add_claim(
         "negated": negated,
         "exclusive": exclusive,
     }
-    with ctx.write(payload, actor=speaker) as tx:
-        row, who = tx.object(obj), tx.agent(agent)
-        trust = probability("trust", tx.settings().get("trust", 1.0))
-        stored = 1.0 - trust * p if negated else trust * p
-        claim = {"claim_speaker": speaker, "claim_trust": trust, "claim_time": ctx.now}
-        rows = [{"object_id": row.id, "agent_id": who.id, "claim_p": stored, **claim}]
-        others = [a for a in tx.agents() if a.id != who.id] if exclusive else []
-        rows += [{"object_id": row.id, "agent_id": a.id, "claim_p": 0.0, **claim} for a in others]
-        tx.write_beliefs(rows)
-        after_claims(tx, [agent, *(a.name for a in others)], ctx.now)
+    with changing(ctx, payload, actor=speaker) as (tx, mind):
+        tx.object(obj), tx.agent(agent)  # unknown names are errors that list the known ones
+        trust = probability("trust", mind.settings.trust)
+        stored = mind.claim(obj, agent, p, negated=negated, exclusive=exclusive, speaker=speaker)
     alone = " alone" if exclusive else ""
     return Done(
         f"noted: {obj} is {'not ' if negated else ''}owned by {agent}{alone} (stored p={stored:.3g})",
@@ -64,17 +57,19 @@ def add_claim(
 
 
 def add_permission(ctx: AppContext, action: str, obj: str, value: float, speaker: str | None = None) -> Done:
-    """``forbid|allow ACTION on OBJ``: store (overwrite) the permission; value 1.0 forbids, 0.0 allows."""
+    """``forbid|allow ACTION on OBJ``: store (overwrite) the permission; value 1.0 forbids, 0.0 allows.
+
+    Reads only the objects that carry permissions (the examples and what inference may change)."""
     check_action(action)
     value = probability("a permission value", value)
     payload = {"op": "permission", "action": action, "object": obj, "value": value}
-    with ctx.write(payload, actor=speaker) as tx:
-        if tx.settings().get("frozen.perms"):
+    with changing(ctx, payload, actor=speaker, only=[obj], permitted=True) as (tx, mind):
+        if mind.switches.frozen_perms:
             raise OwnctlError("permissions are frozen: new permissions are refused (ownctl unfreeze perms)")
-        row = tx.set_permission(action, tx.object(obj).id, value, speaker, ctx.now)
-        outcome = after_permission(tx, action, row.object_id, ctx.now)
-        permission_id = row.id
-        rules = [r.text for r in tx.rules(action)]
+        outcome = mind.permit(action, obj, value, speaker)
+        rules = [r.text() for r in mind.rules[action]]
+    with ctx.read() as tx:
+        permission_id = tx.permission_id(action, tx.object(obj).id)
     verb = "forbidden" if value >= 0.5 else "allowed"
     learned = ""
     if outcome is not None and outcome.induced:
@@ -101,19 +96,22 @@ def check_references(tx: Any, rule: Rule) -> None:
 
 
 def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
-    """``forbid|allow ACTION [if LITERALS]``: a given norm (see the module docstring)."""
+    """``forbid|allow ACTION [if LITERALS]``: a given norm, by cover rule (forbid) or uncover rule
+    (allow; the allow norm is kept as a rule of origin allow and subtracted after re-induction)."""
     norm: Norm = parse_norm(text)
     canonical = norm.text()
-    with ctx.write({"op": "norm", "sign": norm.sign, "text": canonical}, actor=speaker) as tx:
+    action = norm.rule.action
+    payload = {"op": "norm", "sign": norm.sign, "text": canonical}
+    with changing(ctx, payload, actor=speaker, only=[], permitted=True) as (tx, mind):
         check_references(tx, norm.rule)
-        if tx.settings().get("frozen.rules"):
+        if mind.switches.frozen_rules:
             raise OwnctlError("rules are frozen: given norms are refused (ownctl unfreeze rules)")
-        before = {r.text for r in tx.rules(norm.rule.action)}
-        learn_from_norm(tx, norm, speaker, ctx.now)
-        reinfer(tx, ctx.now)
-        after = [(r.id, r.text) for r in tx.rules(norm.rule.action)]
-    added = [t for _, t in after if t not in before]
-    removed = sorted(before - {t for _, t in after})
+        result = mind.instruct(norm, speaker)
+        assert result is not None
+    with ctx.read() as tx:
+        after = [(r.id, r.text) for r in tx.rules(action)]
+    added = [r.text() for r in result.added]
+    removed = sorted(r.text() for r in result.removed)
     parts = [f"added: {t}" for t in added] + [f"removed: {t}" for t in removed]
     if not parts:
         parts = ["the rules already say so" if norm.sign == "forbid" else "no rule covered it"]
@@ -121,5 +119,5 @@ def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
         f"{canonical}: " + "; ".join(parts),
         {"id": next((i for i, t in after if t == canonical), next((i for i, t in after if t in added), None)),
          "text": canonical, "sign": norm.sign, "stored": bool(added), "added": added, "removed": removed,
-         "rules": [{"id": i, "text": t} for i, t in after]},
+         "rules": [{"id": i, "text": t} for i, t in after if not t.startswith("allow ")]},
     )

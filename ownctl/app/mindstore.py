@@ -1,89 +1,334 @@
-"""Load a store into an in-memory :class:`~ownctl.experiment.mind.Mind` and write it back.
+"""Load the :class:`~ownctl.mind.Mind` an instruction needs from the store, and save what it changed.
 
-Long-running work (a task run) drives the same Mind the experiments use, and persists what it
-learned after every step, each step in its own transaction (DESIGN section 9).
+Every instruction is load -> call -> save (``docs/architecture.md``): :func:`load` reads the
+objects a use case needs (all of them; or only some, with the objects that carry permissions, when
+nothing needs every object) with their beliefs, the permissions on them with their percept
+snapshots, every rule and the switches; the Mind does the work; :meth:`Stored.save` compares the
+Mind with what was loaded (or last saved) and writes only the differences, beliefs in bulk. Loading
+what was saved gives the same Mind back, bit for bit, so a store behaves exactly like a Mind kept in
+memory (tested).
+
+Stored forms: an ownership row holds the claim (with speaker, trust, time), the prior (the
+prediction, with its source: ``prediction`` or ``base-rate``) and the posterior (only for objects
+that carry permissions while inference is on; elsewhere the prior stands). A permission holds its
+arrival rank and the object's percepts when it was given. A rule row holds its text, origin
+(given, learned, allow), provenance and rank.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterator, Sequence
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ownctl.app.learning import save_rules
 from ownctl.app.settings import to_config
-from ownctl.experiment.mind import Mind, Switches
-from ownctl.logic.rules import parse_norm, parse_rule
+from ownctl.learn.evidence import Vocabulary
+from ownctl.logic.rules import Rule, parse_norm, parse_rule
 from ownctl.logic.vocab import ACTIONS
-from ownctl.world.model import World
+from ownctl.mind import SWITCHES, ClaimInfo, Given, Mind, RuleInfo, Switches
+from ownctl.world.model import Area, ObjectSpec
 
 if TYPE_CHECKING:
+    from ownctl.app.context import AppContext
     from ownctl.store.repo import Tx
 
 
-def mind_from_store(tx: Tx, world: World) -> Mind:
-    """A Mind over ``world``'s objects holding the store's claims, priors, permissions and rules."""
+def spec_of(row: Any, categories: set[str], touches: dict[str, float]) -> ObjectSpec:
+    """A stored object (plain row) as a core spec; touch times stay absolute."""
+    position = None if row.x is None or row.y is None else (row.x, row.y, row.z if row.z is not None else 0.0)
+    return ObjectSpec(row.name, row.color, position, frozenset(categories), dict(touches))
+
+
+def seen_to_json(spec: ObjectSpec) -> dict[str, Any]:
+    """A permission's percept snapshot in its stored form."""
+    return {"color": spec.color, "position": None if spec.position is None else list(spec.position),
+            "categories": sorted(spec.categories), "touches": dict(spec.last_touch)}
+
+
+def seen_from_json(name: str, data: dict[str, Any] | None, current: ObjectSpec) -> ObjectSpec:
+    """A stored percept snapshot as a spec (a permission stored without one: the current percepts)."""
+    if not data:
+        return current
+    pos = data.get("position")
+    position = None if pos is None else (float(pos[0]), float(pos[1]), float(pos[2]))
+    return ObjectSpec(name, data.get("color"), position, frozenset(data.get("categories") or ()),
+                      {str(a): float(t) for a, t in (data.get("touches") or {}).items()})
+
+
+def rule_of(text: str, origin: str) -> Rule:
+    """The rule a stored row holds (allow rows hold the allow norm's text)."""
+    return parse_norm(text).rule if origin == "allow" else parse_rule(text)
+
+
+def rule_text(rule: Rule, origin: str) -> str:
+    """The stored text of a rule of ``origin``."""
+    return rule.text("allow") if origin == "allow" else rule.text()
+
+
+def switches_of(stored: dict[str, Any]) -> Switches:
+    """The Mind's switches from the store's flag settings."""
+    out = Switches()
+    for key, (attr, when_on) in SWITCHES.items():
+        on = bool(stored.get(key, False))
+        setattr(out, attr, on if when_on else not on)
+    return out
+
+
+@dataclass
+class _Base:
+    """What the store holds, as last loaded or saved (the Mind is compared with it on save)."""
+
+    agents: tuple[str, ...]
+    areas: tuple[Area, ...]
+    objects: dict[str, ObjectSpec]
+    claims: dict[str, np.ndarray]
+    claim_info: dict[tuple[str, str], ClaimInfo]
+    prior: dict[str, np.ndarray]
+    source: dict[str, np.ndarray]
+    posterior: dict[str, np.ndarray]
+    perms: dict[str, dict[str, Given]]
+    rules: dict[str, list[tuple[str, str, Any]]]
+    switches: dict[str, bool]
+
+
+def _rules_state(mind: Mind) -> dict[str, list[tuple[str, str, Any]]]:
+    return {a: [(rule_text(r, i.origin), i.origin, dict(i.provenance)) for r, i in mind.all_rules(a)]
+            for a in ACTIONS}
+
+
+def _stored_posterior(mind: Mind) -> np.ndarray:
+    """The posteriors as stored: for objects with permissions while inference is on; NaN elsewhere."""
+    out = np.full(mind.claims.shape, np.nan)
+    idx = mind.permitted()
+    if mind.switches.inference and idx:
+        out[idx] = mind.posterior()[idx]
+    return out
+
+
+def _switch_values(mind: Mind) -> dict[str, bool]:
+    return {k: getattr(mind.switches, attr) == when_on for k, (attr, when_on) in SWITCHES.items()}
+
+
+@dataclass
+class Stored:
+    """A Mind loaded from the store, with the store ids of its objects and agents."""
+
+    mind: Mind
+    ids: dict[str, int]  # object name -> id
+    agent_ids: dict[str, int]
+    base: _Base = field(init=False)
+
+    def __post_init__(self) -> None:
+        self.base = self._snapshot()
+
+    def _snapshot(self, stored_posterior: np.ndarray | None = None) -> _Base:
+        mind = self.mind
+        names = [o.name for o in mind.objects]
+        post = _stored_posterior(mind) if stored_posterior is None else stored_posterior
+        prior = mind.predicted.copy()
+        return _Base(
+            agents=mind.agents, areas=tuple(mind.areas), objects={o.name: o for o in mind.objects},
+            claims=dict(zip(names, mind.claims.copy(), strict=True)), claim_info=dict(mind.claim_info),
+            prior=dict(zip(names, prior, strict=True)),
+            source=dict(zip(names, mind.prior_source.copy(), strict=True)),
+            posterior=dict(zip(names, post, strict=True)),
+            perms={a: dict(g) for a, g in mind.perms.items()}, rules=_rules_state(mind),
+            switches=_switch_values(mind),
+        )
+
+    # -- saving ---------------------------------------------------------------------------------
+    def save(self, tx: Tx) -> None:
+        """Write what changed since the last load or save, then take the Mind as the new baseline."""
+        mind, base = self.mind, self.base
+        mind.refresh()
+        now = mind.now
+        self._save_agents(tx, base)
+        self._save_areas(tx, base)
+        self._save_objects(tx, base)
+        post = _stored_posterior(mind)
+        self._save_beliefs(tx, base, post)
+        self._save_permissions(tx, base)
+        rules = _rules_state(mind)
+        for action in ACTIONS:
+            if rules[action] != base.rules[action]:
+                tx.replace_rules(action, rules[action], now)
+        for key, value in _switch_values(mind).items():
+            if value != base.switches[key]:
+                tx.set_setting(key, value or None)
+        self.base = self._snapshot(post)
+
+    def _save_agents(self, tx: Tx, base: _Base) -> None:
+        for name in base.agents:
+            if name not in self.mind.agents:
+                tx.remove(tx.agent(name))
+                del self.agent_ids[name]
+        for name in self.mind.agents:
+            if name not in base.agents:
+                self.agent_ids[name] = tx.add_agent(name, self.mind.now).id
+
+    def _save_areas(self, tx: Tx, base: _Base) -> None:
+        now = {a.name: a for a in self.mind.areas}
+        for area in base.areas:
+            if area.name not in now:
+                tx.remove(tx.area(area.name))
+        for area in self.mind.areas:
+            if area not in base.areas:
+                tx.add_area(area.name, area.box)
+
+    def _save_objects(self, tx: Tx, base: _Base) -> None:
+        mind = self.mind
+        current = {o.name for o in mind.objects}
+        gone = [n for n in base.objects if n not in current]
+        if gone:
+            tx.remove_objects([self.ids.pop(n) for n in gone])
+        fresh = [o for o in mind.objects if o.name not in base.objects]
+        if fresh:
+            ids = tx.add_objects([self._row(o) for o in fresh], mind.now)
+            self.ids.update(ids)
+            tx.add_categories([(ids[o.name], c) for o in fresh for c in o.categories])
+            tx.add_touches([(ids[o.name], self.agent_ids[a], t)
+                            for o in fresh for a, t in o.last_touch.items()])
+        for spec in mind.objects:
+            old = base.objects.get(spec.name)
+            if old is None or old == spec:
+                continue
+            oid = self.ids[spec.name]
+            if (old.color, old.position) != (spec.color, spec.position):
+                tx.set_percepts(oid, self._row(spec))
+            if old.categories != spec.categories:
+                tx.set_categories(oid, spec.categories)
+            for agent, t in spec.last_touch.items():
+                if old.last_touch.get(agent) != t:
+                    tx.touch(oid, self.agent_ids[agent], t)
+
+    @staticmethod
+    def _row(spec: ObjectSpec) -> dict[str, Any]:
+        x, y, z = spec.position if spec.position is not None else (None, None, None)
+        return {"name": spec.name, "color": spec.color, "x": x, "y": y, "z": z}
+
+    def _save_beliefs(self, tx: Tx, base: _Base, post: np.ndarray) -> None:
+        mind, now = self.mind, self.mind.now
+        m = len(mind.agents)
+        old_cols = {a: k for k, a in enumerate(base.agents)}
+        take = np.array([old_cols.get(a, -1) for a in mind.agents], dtype=int)
+        rows: list[dict[str, Any]] = []
+        for i, spec in enumerate(mind.objects):
+            name = spec.name
+            oid = self.ids[name]
+            if name in base.claims:
+                def old(table: dict[str, np.ndarray], fill: Any, name: str = name) -> np.ndarray:
+                    row = table[name]
+                    return np.array([row[k] if k >= 0 else fill for k in take], dtype=row.dtype)
+                claims, prior = old(base.claims, np.nan), old(base.prior, np.nan)
+                source, posterior = old(base.source, None), old(base.posterior, np.nan)
+            else:
+                claims = prior = posterior = np.full(m, np.nan)
+                source = np.full(m, None, dtype=object)
+            for j, agent in enumerate(mind.agents):
+                entry: dict[str, Any] = {}
+                c = mind.claims[i, j]
+                info = mind.claim_info.get((name, agent))
+                if not _same(c, claims[j]) or info != base.claim_info.get((name, agent)):
+                    meta = info or ClaimInfo()
+                    entry.update(claim_p=None if np.isnan(c) else float(c),
+                                 claim_speaker=None if np.isnan(c) else meta.speaker,
+                                 claim_trust=None if np.isnan(c) else meta.trust,
+                                 claim_time=None if np.isnan(c) else meta.time)
+                if not _same(mind.predicted[i, j], prior[j]) or mind.prior_source[i, j] != source[j]:
+                    entry.update(prior_p=float(mind.predicted[i, j]),
+                                 prior_source=str(mind.prior_source[i, j]), prior_time=now)
+                if not _same(post[i, j], posterior[j]):
+                    known = not np.isnan(post[i, j])
+                    entry.update(posterior_p=float(post[i, j]) if known else None,
+                                 posterior_source="inference" if known else None,
+                                 posterior_time=now if known else None)
+                if entry:
+                    rows.append({"object_id": oid, "agent_id": self.agent_ids[agent], **entry})
+        tx.write_beliefs(rows)
+
+    def _save_permissions(self, tx: Tx, base: _Base) -> None:
+        for action in ACTIONS:
+            old, new = base.perms.get(action, {}), self.mind.perms[action]
+            for name in old:
+                if name not in new and name in self.ids:
+                    tx.delete_permission(action, self.ids[name])
+            for name, given in new.items():
+                if old.get(name) != given:
+                    tx.set_permission(action, self.ids[name], given.value, given.speaker, given.time,
+                                      seq=given.seq, seen=seen_to_json(given.seen))
+
+
+def _same(a: float, b: float) -> bool:
+    return bool((np.isnan(a) and np.isnan(b)) or a == b)
+
+
+# -- loading ----------------------------------------------------------------------------------------
+def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool = False) -> Stored:
+    """The Mind of the store at time ``now``: every object (``only`` None), or the objects named in
+    ``only`` plus, with ``permitted``, every object that carries a permission (a partial Mind)."""
     stored = tx.settings()
-    switches = Switches(
-        inference=not stored.get("disabled.inference", False),
-        prediction=not stored.get("disabled.prediction", False),
-        frozen_perms=bool(stored.get("frozen.perms", False)),
-        frozen_rules=bool(stored.get("frozen.rules", False)),
-    )
-    mind = Mind(world.agents, list(world.objects), world.areas, to_config(stored), switches)
-    rows = {r.id: i for i, r in enumerate(tx.objects())}
-    column = {a.id: world.agents.index(a.name) for a in tx.agents()}
-    for b in tx.ownership():
-        i, j = rows[b.object_id], column[b.agent_id]
+    agents = tx.agents()
+    agent_ids = {a.name: a.id for a in agents}
+    names = {a.id: a.name for a in agents}
+    ids: list[int] | None = None
+    if only is not None:
+        wanted = [tx.object(n).id for n in only]
+        if permitted:
+            wanted += [p.object_id for p in tx.permission_table()]
+        ids = sorted(set(wanted))
+    rows = tx.object_table(ids)
+    categories = tx.categories(ids)
+    touches = tx.touch_times(ids)
+    specs = [spec_of(r, categories.get(r.id, set()), touches.get(r.id, {})) for r in rows]
+    vocabulary = None
+    if only is not None:
+        colors, cats = tx.vocabulary()
+        vocabulary = Vocabulary((), colors, (), cats)
+    mind = Mind(tuple(names[a.id] for a in agents), specs,
+                [Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.areas()], to_config(stored),
+                switches_of(stored), now=now, touch_times=True, complete=only is None, vocabulary=vocabulary)
+    index = {r.id: i for i, r in enumerate(rows)}
+    column = {a.id: j for j, a in enumerate(agents)}
+    stored_post = np.full(mind.claims.shape, np.nan)
+    prior = np.full(mind.claims.shape, np.nan)
+    for b in tx.belief_table(ids):
+        i, j = index[b.object_id], column[b.agent_id]
         if b.claim_p is not None:
             mind.claims[i, j] = b.claim_p
+            mind.claim_info[(specs[i].name, names[b.agent_id])] = ClaimInfo(
+                b.claim_speaker, 1.0 if b.claim_trust is None else b.claim_trust,
+                0.0 if b.claim_time is None else b.claim_time)
         if b.prior_p is not None:
-            mind.predicted[i, j] = b.prior_p
-    for p in tx.permissions():
-        mind.remember(p.action, rows[p.object_id], p.value)
-    for action in ACTIONS:
-        texts = tx.rules(action)
-        mind.rules[action] = tuple(parse_rule(r.text) for r in texts)
-        mind.given[action] = [parse_rule(r.text) for r in texts if r.origin == "given"]
-        mind.allows[action] = [parse_norm(t).rule for t in stored.get(f"allow.{action}", [])]
-    return mind
+            mind.predicted[i, j] = prior[i, j] = b.prior_p
+            mind.prior_source[i, j] = b.prior_source or "prediction"
+        if b.posterior_p is not None:
+            stored_post[i, j] = b.posterior_p
+    for p in tx.permission_rows(ids):
+        i = index[p.object_id]
+        seq = p.seq if p.seq is not None else p.id
+        seen = seen_from_json(specs[i].name, p.seen, specs[i])
+        mind.restore_permission(p.action, i, Given(p.value, seq, seen, p.speaker, p.time))
+    mind.reserve_ranks(tx.max_permission_seq())
+    for row in tx.rules():
+        mind.restore_rule(row.action, rule_of(row.text, row.origin),
+                          RuleInfo(row.origin, dict(row.provenance or {})))
+    out = Stored(mind, {r.name: r.id for r in rows}, agent_ids)
+    # compare with what the store really holds (NULL priors and posteriors are written on save)
+    names_list = [s.name for s in specs]
+    out.base.prior = dict(zip(names_list, prior, strict=True))
+    out.base.posterior = dict(zip(names_list, stored_post, strict=True))
+    return out
 
 
-def save_mind(tx: Tx, mind: Mind, now: float, touched: list[int]) -> None:
-    """Write the Mind's permissions, claims, beliefs, rules and the ``touched`` objects' positions."""
-    rows = tx.objects()
-    agents = {a.name: a.id for a in tx.agents()}
-    for i in touched:
-        pos = mind.objects[i].position
-        if pos is not None:
-            rows[i].x, rows[i].y, rows[i].z = (float(v) for v in pos)
-    stored = {(p.action, p.object_id): p.value for p in tx.permissions()}
-    for action, values in mind.perms.items():
-        for i in mind.order[action]:
-            if stored.get((action, rows[i].id)) != values[i]:
-                tx.set_permission(action, rows[i].id, float(values[i]), "instructor", now)
-    post = mind.posterior()
-    claimed = {(b.object_id, b.agent_id): b.claim_p for b in tx.ownership()}
-    permitted = np.zeros(len(rows), dtype=bool)
-    for idx in mind.order.values():
-        permitted[idx] = True
-    beliefs: list[dict[str, Any]] = []
-    for i, row in enumerate(rows):
-        for j, agent in enumerate(mind.agents):
-            claim = mind.claims[i, j]
-            entry: dict[str, Any] = {
-                "object_id": row.id, "agent_id": agents[agent],
-                "prior_p": float(mind.predicted[i, j]), "prior_source": "prediction", "prior_time": now,
-                "posterior_p": float(post[i, j]) if permitted[i] and mind.switches.inference else None,
-                "posterior_source": "inference" if permitted[i] and mind.switches.inference else None,
-                "posterior_time": now if permitted[i] else None,
-            }
-            if not np.isnan(claim) and claimed.get((row.id, agents[agent])) != claim:
-                entry.update(claim_p=float(claim), claim_speaker="instructor", claim_trust=1.0,
-                             claim_time=now)
-            beliefs.append(entry)
-    tx.write_beliefs(beliefs)
-    for action, rules in mind.rules.items():
-        ev, idx = mind.evidence(action)
-        said = {r: {"given": r.text(), "during": "run"} for r in mind.given[action]}
-        save_rules(tx, action, rules, ev, [mind.objects[i].name for i in idx], now, said)
+@contextmanager
+def changing(ctx: AppContext, payload: dict[str, Any], actor: str | None = None,
+             only: Sequence[str] | None = None, permitted: bool = False) -> Iterator[tuple[Tx, Mind]]:
+    """One instruction as one write transaction: log it, load the Mind it needs (see :func:`load`),
+    let the caller change it, save what changed. An error leaves the store as it was."""
+    with ctx.write(payload, actor=actor) as tx:
+        stored = load(tx, ctx.now, only, permitted)
+        yield tx, stored.mind
+        stored.save(tx)

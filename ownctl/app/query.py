@@ -7,15 +7,11 @@ from __future__ import annotations
 
 from typing import Any
 
-import numpy as np
-
-from ownctl.app.beliefs import decision_belief, snapshot
+from ownctl.app.beliefs import decision_belief
 from ownctl.app.context import AppContext, Done
-from ownctl.app.learning import reinfer
+from ownctl.app.mindstore import changing, load, rule_of
 from ownctl.app.settings import probability
 from ownctl.errors import OwnctlError
-from ownctl.logic.prob import p_forbidden
-from ownctl.logic.rules import parse_rule
 
 
 def owners(ctx: AppContext, obj: str) -> dict[str, Any]:
@@ -89,57 +85,47 @@ def list_permissions(ctx: AppContext) -> list[dict[str, Any]]:
 
 def remove_permission(ctx: AppContext, permission_id: int) -> Done:
     """Forget one permission."""
-    with ctx.write({"op": "permission.remove", "id": permission_id}) as tx:
+    with ctx.read() as tx:
         row = tx.permission(permission_id)
-        data = _permission_dict(row, {row.object_id: tx.object_by_id(row.object_id).name})  # type: ignore[union-attr]
-        tx.remove(row)
-        reinfer(tx, ctx.now)  # the posterior no longer rests on it
+        name = tx.object_name(row.object_id)
+        data = _permission_dict(row, {row.object_id: name})
+    payload = {"op": "permission.remove", "id": permission_id}
+    with changing(ctx, payload, only=[name], permitted=True) as (_, mind):
+        mind.remove_permission(row.action, name)  # the posterior no longer rests on it
     return Done(f"removed permission {permission_id} ({data['text']})", data)
 
 
 def list_rules(ctx: AppContext) -> list[dict[str, Any]]:
-    """Every rule with its soft accuracy on its action's stored permissions (None without any).
+    """Every rule (forbid rules, then allow norms, per action) with its soft accuracy on its
+    action's stored permissions (None without any), as the conflict gate measures it.
 
-    ``accuracy`` is the rule's own mean agreement ``1 - |value - P(rule holds)|`` over the
-    permissions of its action; ``set_accuracy`` is the same for the action's whole rule set.
+    ``accuracy`` is the rule's own mean agreement between each permission and P(rule holds) over
+    the action's examples (prior ownership, the percepts of when each permission was given);
+    ``set_accuracy`` is the same for the action's whole rule set. Allow norms carry neither.
     """
     with ctx.read() as tx:
         rows = tx.rules()
-        permissions = tx.permission_table()
-        ids = sorted({p.object_id for p in permissions})
-        snap = snapshot(tx, ctx.now, ids=ids) if ids else None
-    index = {oid: i for i, oid in enumerate(ids)}
-    evidence: dict[str, tuple[Any, np.ndarray]] = {}  # action -> (frame of its examples, their values)
-    whole: dict[str, float] = {}
-    for action in sorted({r.action for r in rows}):
-        mine = [p for p in permissions if p.action == action]
-        if mine and snap is not None:
-            sub = snap.frame().take([index[p.object_id] for p in mine])
-            values = np.array([p.value for p in mine])
-            evidence[action] = (sub, values)
-            rules = [parse_rule(r.text) for r in rows if r.action == action]
-            whole[action] = float(1.0 - np.abs(values - p_forbidden(rules, sub)).mean())
+        mind = load(tx, ctx.now, only=[], permitted=True).mind
+    evidence = {a: mind.evidence(a)[0] for a in sorted({r.action for r in rows})}
     out = []
     for row in rows:
-        entry = {"id": row.id, "text": row.text, "action": row.action, "origin": row.origin}
+        entry: dict[str, Any] = {"id": row.id, "text": row.text, "action": row.action, "origin": row.origin}
         entry.update(accuracy=None, set_accuracy=None, provenance=row.provenance, created=row.created)
-        if row.action in evidence:
-            sub, values = evidence[row.action]
-            entry["accuracy"] = float(1.0 - np.abs(values - p_forbidden([parse_rule(row.text)], sub)).mean())
-            entry["set_accuracy"] = whole[row.action]
+        ev = evidence[row.action]
+        if ev.n and row.origin != "allow":
+            entry["accuracy"] = ev.soft_accuracy([rule_of(row.text, row.origin)])
+            entry["set_accuracy"] = ev.soft_accuracy(mind.rules[row.action])
         out.append(entry)
     return out
 
 
 def remove_rule(ctx: AppContext, rule_id: int) -> Done:
-    """Forget one rule; refused while rules are frozen."""
-    with ctx.write({"op": "rule.remove", "id": rule_id}) as tx:
+    """Forget one rule or allow norm; refused while rules are frozen."""
+    with ctx.read() as tx:
         row = tx.rule(rule_id)
-        if tx.settings().get("frozen.rules"):
-            raise OwnctlError("rules are frozen: rules are not changed (ownctl unfreeze rules)")
-        text = row.text
-        tx.remove(row)
-        reinfer(tx, ctx.now)  # posteriors follow the remaining rules
+        action, text, origin = row.action, row.text, row.origin
+    with changing(ctx, {"op": "rule.remove", "id": rule_id}, only=[], permitted=True) as (_, mind):
+        mind.remove_rule(action, rule_of(text, origin))  # posteriors follow the remaining rules
     return Done(f"removed rule {rule_id}: {text}", {"id": rule_id, "text": text})
 
 

@@ -21,12 +21,12 @@ from dataclasses import dataclass
 from typing import Any
 
 from ownctl.app.context import AppContext
-from ownctl.app.mindstore import mind_from_store, save_mind
+from ownctl.app.mindstore import load as load_mind
 from ownctl.app.worldfile import current_world, store_world
 from ownctl.errors import BadValue, OwnctlError
-from ownctl.experiment.mind import Mind
 from ownctl.experiment.task import Attempt, Execution, Instructor, Verdict, get_task, run_task
 from ownctl.experiment.task_report import StepRecord, TaskReport
+from ownctl.mind import Mind
 from ownctl.world.model import Position, World
 
 INSTRUCTORS = ("oracle", "none")
@@ -142,11 +142,12 @@ def teach_utterance(mind: Mind, hit: Interrupt, attempt: Attempt) -> bool:
     stop = False
     for _, ins in teaching_order(understand(hit.utterance, ctx).instructions):
         if isinstance(ins, Claim):
-            mind.claim(mind.index[ins.object], ins.agent, ins.probability, exclusive=ins.exclusive)
+            mind.claim(ins.object, ins.agent, ins.p, negated=ins.negated, exclusive=ins.exclusive,
+                       speaker=hit.speaker)
         elif isinstance(ins, Permission):
-            mind.permit(ins.action, mind.index[ins.object], 1.0 if ins.forbid else 0.0)
+            mind.permit(ins.action, ins.object, 1.0 if ins.forbid else 0.0, hit.speaker)
         elif isinstance(ins, NormInstruction):
-            mind.instruct(ins.norm)
+            mind.instruct(ins.norm, hit.speaker)
         elif isinstance(ins, Skip):
             stop = True
     return stop
@@ -204,7 +205,8 @@ def run(
     from ownctl.experiment.task import SilentInstructor
 
     with ctx.read() as tx:
-        mind = mind_from_store(tx, world)
+        stored = load_mind(tx, ctx.now)
+    mind = stored.mind
     base: Instructor = OracleInstructor(world) if instructor == "oracle" else SilentInstructor()
     teacher = Interrupting(base, interrupts, teach_utterance) if interrupts else base
     if physics:
@@ -218,7 +220,7 @@ def run(
         payload = {"op": "run.step", "task": chosen.name, "object": record.name, "outcome": record.outcome,
                    "reason": record.reason, "mistake": record.mistake}
         with ctx.write(payload) as tx:
-            save_mind(tx, mind, ctx.now, [record.obj])
+            stored.save(tx)
             refusal = None if record.allowed else {"action": chosen.action, "object": record.name,
                                                    "steps": list(record.forbidding), "at": ctx.now}
             tx.converse(target=record.name, action=chosen.action, refusal=refusal)

@@ -1,6 +1,7 @@
 """Use cases about what the robot knows exists: agents, objects (with percepts) and areas.
 
-Each mutating function is one transaction and one event-log entry; each returns a :class:`Done`
+Each mutating function is one transaction and one event-log entry that loads the Mind, calls it and
+saves what changed (predictions and posteriors follow every change); each returns a :class:`Done`
 (a human sentence plus JSON-ready data). Lists return JSON-ready dicts.
 """
 
@@ -10,12 +11,12 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
-from ownctl.app.learning import reinfer, repredict
-from ownctl.errors import BadValue, OwnctlError
+from ownctl.app.mindstore import changing
+from ownctl.errors import BadValue
 from ownctl.logic.names import check_name
-from ownctl.logic.rules import parse_rule
+from ownctl.mind import KEEP
+from ownctl.world.model import Area, ObjectSpec
 
 NONE = "none"  # as a percept value: clear it
 
@@ -43,9 +44,8 @@ def finite(what: str, value: float) -> float:
 def add_agent(ctx: AppContext, name: str) -> Done:
     """Introduce an agent (a possible owner)."""
     check_name("agent", name)
-    with ctx.write({"op": "agent.add", "agent": name}) as tx:
-        tx.add_agent(name, ctx.now)
-        after_claims(tx, [name], ctx.now)  # the new agent's calibrated prior enters every belief
+    with changing(ctx, {"op": "agent.add", "agent": name}) as (_, mind):
+        mind.add_agent(name)  # the new agent's calibrated prior enters every belief
     return Done(f"added agent {name}", {"agent": name})
 
 
@@ -58,30 +58,20 @@ def list_agents(ctx: AppContext) -> list[dict[str, Any]]:
         return [{"name": a.name, "touched": touched.get(a.id, 0)} for a in tx.agents()]
 
 
-def _named_by_rules(tx: Any, pred: str, name: str) -> list[int]:
-    return [r.id for r in tx.rules() if any(lit.atom == (pred, name) for lit in parse_rule(r.text).literals)]
-
-
-def _remove_named(ctx: AppContext, kind: str, name: str, pred: str | None) -> Done:
+def _remove_named(ctx: AppContext, kind: str, name: str) -> Done:
     """Forget an agent, area or object; an agent or area is refused while a rule names it.
 
-    Beliefs and permissions about it go with it (cascades), and posteriors follow the change.
+    Beliefs and permissions about it go with it, and predictions and posteriors follow the change.
     """
-    with ctx.write({"op": f"{kind}.remove", kind: name}) as tx:
-        row = {"agent": tx.agent, "area": tx.area, "object": tx.object}[kind](name)
-        users = _named_by_rules(tx, pred, name) if pred else []
-        if users:
-            raise OwnctlError(
-                f"{kind} {name!r} is named by rules {users}; remove them first (ownctl rules remove ID)"
-            )
-        tx.remove(row)
-        reinfer(tx, ctx.now)
+    with changing(ctx, {"op": f"{kind}.remove", kind: name}) as (tx, mind):
+        {"agent": tx.agent, "area": tx.area, "object": tx.object}[kind](name)  # unknown: lists the known
+        {"agent": mind.remove_agent, "area": mind.remove_area, "object": mind.remove_object}[kind](name)
     return Done(f"removed {kind} {name}", {kind: name})
 
 
 def remove_agent(ctx: AppContext, name: str) -> Done:
     """Forget an agent and its beliefs; refused while a rule names it."""
-    return _remove_named(ctx, "agent", name, "ownedBy")
+    return _remove_named(ctx, "agent", name)
 
 
 # -- objects ------------------------------------------------------------------------------------
@@ -115,10 +105,9 @@ def add_object(
     check_name("object", name)
     percepts = _percepts(color, pos)
     cats = _categories(categories)
-    with ctx.write({"op": "object.add", "object": name, **percepts, "categories": cats}) as tx:
-        row = tx.add_object(name, ctx.now, **percepts)
-        tx.set_categories(row.id, cats)
-        repredict(tx, None, ctx.now, [row.id])  # its priors, from every agent's predictor
+    position = None if percepts.get("x") is None else (percepts["x"], percepts["y"], percepts["z"])
+    with changing(ctx, {"op": "object.add", "object": name, **percepts, "categories": cats}) as (_, mind):
+        mind.add_objects([ObjectSpec(name, percepts.get("color"), position, frozenset(cats))])
     return Done(f"added object {name}", {"object": name})
 
 
@@ -134,14 +123,13 @@ def set_object(
     cats = _categories(categories) if categories else None
     if not percepts and cats is None:
         raise BadValue("nothing to set; give --color, --pos or --category")
-    with ctx.write({"op": "object.set", "object": name, **percepts, "categories": cats}) as tx:
-        row = tx.object(name)
-        for key, value in percepts.items():
-            setattr(row, key, value)
-        if cats is not None:
-            tx.set_categories(row.id, cats)
-        tx.flush()
-        after_claims(tx, [a.name for a in tx.agents()], ctx.now)  # percepts feed prediction and rules
+    with changing(ctx, {"op": "object.set", "object": name, **percepts, "categories": cats}) as (tx, mind):
+        tx.object(name)
+        position: Any = KEEP
+        if "x" in percepts:
+            position = None if percepts["x"] is None else (percepts["x"], percepts["y"], percepts["z"])
+        mind.set_percepts(name, color=percepts.get("color", KEEP), position=position,
+                          categories=KEEP if cats is None else cats)
     changed = sorted({"x": "position", "y": "position", "z": "position"}.get(k, k) for k in percepts)
     if cats is not None:
         changed.append("categories")
@@ -150,7 +138,7 @@ def set_object(
 
 def remove_object(ctx: AppContext, name: str) -> Done:
     """Forget an object with its beliefs and permissions."""
-    return _remove_named(ctx, "object", name, None)
+    return _remove_named(ctx, "object", name)
 
 
 def _object_dict(row: Any, categories: set[str], touches: dict[str, float]) -> dict[str, Any]:
@@ -190,10 +178,9 @@ def show_object(ctx: AppContext, name: str) -> dict[str, Any]:
 def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Done:
     """Record that ``agent`` interacted with ``obj`` at absolute store time ``at`` (default now)."""
     time = ctx.now if at is None else finite("--at", at)
-    with ctx.write({"op": "object.touch", "object": obj, "agent": agent, "time": time}) as tx:
-        row, who = tx.object(obj), tx.agent(agent)
-        tx.touch(row.id, who.id, time)
-        after_claims(tx, [agent], ctx.now)  # recency is a percept of prediction
+    with changing(ctx, {"op": "object.touch", "object": obj, "agent": agent, "time": time}) as (tx, mind):
+        tx.object(obj), tx.agent(agent)
+        mind.touch(obj, agent, time)  # recency is a percept of prediction
     return Done(f"{agent} touched {obj} at {time:g}", {"object": obj, "agent": agent, "time": time})
 
 
@@ -204,8 +191,8 @@ def add_area(ctx: AppContext, name: str, box: str) -> Done:
     x0, y0, x1, y1 = parse_numbers("--box", box, (4,))
     if x0 > x1 or y0 > y1:
         raise BadValue(f"--box must be x0,y0,x1,y1 with x0 <= x1 and y0 <= y1, got {box!r}")
-    with ctx.write({"op": "area.add", "area": name, "box": [x0, y0, x1, y1]}) as tx:
-        tx.add_area(name, (x0, y0, x1, y1))
+    with changing(ctx, {"op": "area.add", "area": name, "box": [x0, y0, x1, y1]}) as (_, mind):
+        mind.add_area(Area(name, (x0, y0, x1, y1)))
     return Done(f"added area {name}", {"area": name, "box": [x0, y0, x1, y1]})
 
 
@@ -217,4 +204,4 @@ def list_areas(ctx: AppContext) -> list[dict[str, Any]]:
 
 def remove_area(ctx: AppContext, name: str) -> Done:
     """Forget an area; refused while a rule names it."""
-    return _remove_named(ctx, "area", name, "inArea")
+    return _remove_named(ctx, "area", name)

@@ -1,4 +1,4 @@
-"""``world load FILE`` and ``world export``: TOML worlds and scenarios (DESIGN section 11).
+"""``world load FILE`` and ``world export``: TOML worlds and scenarios (``docs/architecture.md``).
 
 Loading adds the file's agents (existing agents of the same name are reused), areas and objects
 (duplicates are errors), turns interaction ages into absolute times (``now - age``), and stores the
@@ -9,11 +9,13 @@ measured at ``now``; ground truth comes from the truth tables, never from belief
 from __future__ import annotations
 
 import tomllib
+from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from ownctl.app.beliefs import after_claims, object_spec
 from ownctl.app.context import AppContext, Done
+from ownctl.app.mindstore import load as load_mind
+from ownctl.app.mindstore import spec_of
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.world.model import Area, World
 from ownctl.world.spec import to_toml, world_from_dict, world_to_dict
@@ -36,26 +38,27 @@ def read_world(path: str, seed: int = 0) -> World:
 
 
 def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = False) -> None:
-    """Add ``world``'s agents (reused when they exist), areas, objects and ground truth to the store."""
-    agents = {a.name: a.id for a in tx.agents()}
+    """Add ``world``'s agents (reused when they exist), areas, objects and ground truth to the store.
+
+    The objects join the Mind (every agent's predictions cover them) and are saved in bulk; the
+    ground truth goes to its own tables.
+    """
+    stored = load_mind(tx, now)
+    mind = stored.mind
     for name in world.agents:
-        if name not in agents:
-            agents[name] = tx.add_agent(name, now).id
-    known_areas = {a.name for a in tx.areas()} if skip_existing_areas else set()
+        if name not in mind.agents:
+            mind.add_agent(name)
+    known_areas = {a.name for a in mind.areas}
     for area in world.areas:
-        if area.name not in known_areas:
-            tx.add_area(area.name, area.box)
-    rows = []
-    for spec in world.objects:
-        x, y, z = spec.position if spec.position is not None else (None, None, None)
-        rows.append({"name": spec.name, "color": spec.color, "x": x, "y": y, "z": z})
-    ids = tx.add_objects(rows, now)
-    tx.add_categories([(ids[s.name], c) for s in world.objects for c in s.categories])
-    objects = world.objects
-    tx.add_touches([(ids[s.name], agents[a], now - age) for s in objects for a, age in s.last_touch.items()])
-    truth = [(ids[s.name], agents[a], p) for s in objects for a, p in world.owners.get(s.name, {}).items()]
+        if not (skip_existing_areas and area.name in known_areas):
+            mind.add_area(area)
+    mind.add_objects([replace(s, last_touch={a: now - age for a, age in s.last_touch.items()})
+                      for s in world.objects])
+    stored.save(tx)
+    ids, agents = stored.ids, stored.agent_ids
+    truth = [(ids[s.name], agents[a], p)
+             for s in world.objects for a, p in world.owners.get(s.name, {}).items()]
     tx.set_truth(truth, world.norms)
-    after_claims(tx, list(agents), now)  # priors for the new objects (and agents), then posteriors
 
 
 def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
@@ -79,9 +82,9 @@ def current_world(ctx: AppContext, name: str = "") -> World:
         categories = tx.categories()
         touched = tx.touch_times()
         rows = tx.objects()
-        objects = tuple(
-            object_spec(o, categories.get(o.id, set()), touched.get(o.id, {}), ctx.now) for o in rows
-        )
+        specs = [spec_of(o, categories.get(o.id, set()), touched.get(o.id, {})) for o in rows]
+        objects = tuple(replace(s, last_touch={a: max(0.0, ctx.now - t) for a, t in s.last_touch.items()})
+                        for s in specs)
         names = {o.id: o.name for o in rows}
         owners: dict[str, dict[str, float]] = {}
         for (oid, aid), p in tx.truth_owners().items():

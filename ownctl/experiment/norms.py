@@ -16,10 +16,10 @@ import numpy as np
 
 from ownctl.config import LearnConfig, Settings
 from ownctl.experiment.metrics import Scores, rule_scores
-from ownctl.experiment.mind import Mind, Switches
 from ownctl.experiment.result import TrialResult
 from ownctl.experiment.truth import true_rules
 from ownctl.logic.prob import p_forbidden
+from ownctl.mind import Mind, Switches
 from ownctl.world.model import World, make_frame
 
 WorldFactory = Callable[[np.random.Generator], World]

@@ -15,11 +15,11 @@ import numpy as np
 
 from ownctl.config import LearnConfig, Settings
 from ownctl.experiment.kinematic import KinematicExecutor
-from ownctl.experiment.mind import Mind, Switches
 from ownctl.experiment.norms import WorldFactory
 from ownctl.experiment.oracle import OracleInstructor
 from ownctl.experiment.result import TrialResult
 from ownctl.experiment.task import TaskReport, run_task
+from ownctl.mind import Mind, Switches
 
 
 @dataclass(frozen=True)

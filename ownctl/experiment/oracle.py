@@ -10,9 +10,9 @@ but allowed).
 
 from __future__ import annotations
 
-from ownctl.experiment.mind import Mind
 from ownctl.experiment.task import Attempt, Verdict
 from ownctl.experiment.truth import TrueNorms
+from ownctl.mind import Mind
 from ownctl.world.model import World
 
 

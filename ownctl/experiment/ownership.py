@@ -16,12 +16,12 @@ import numpy as np
 
 from ownctl.config import LearnConfig, Settings
 from ownctl.experiment.metrics import ownership_scores
-from ownctl.experiment.mind import Mind, Switches
 from ownctl.experiment.norms import WorldFactory
 from ownctl.experiment.result import TrialResult
 from ownctl.experiment.truth import true_rules
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import parse_norm
+from ownctl.mind import Mind, Switches
 from ownctl.world.model import make_frame
 
 

@@ -2,7 +2,7 @@
 
 A task (``collectAll``, ``trashAll``) visits every object in ascending order. An object already in
 the task's target area is done (checked when it is dequeued, so earlier moves count). Otherwise
-the :class:`~ownctl.experiment.mind.Mind` decides the action's object-targeted steps (``find``,
+the :class:`~ownctl.mind.Mind` decides the action's object-targeted steps (``find``,
 ``pickUp``, then ``trash`` or ``collect``): a step's permission decides it when there is one, else
 its rules on the posterior at the obedience threshold. The :class:`Instructor` may then teach the
 Mind and override the decision (stop an allowed action, force a refused one); the
@@ -22,11 +22,11 @@ import numpy as np
 
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.metrics import ownership_scores, rule_scores
-from ownctl.experiment.mind import Mind
 from ownctl.experiment.task_report import StepRecord, TaskReport
 from ownctl.experiment.truth import TrueNorms
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.vocab import object_steps
+from ownctl.mind import Mind
 from ownctl.world.model import Area, Position, World
 
 MOVE_TOLERANCE = 0.01  # metres: a smaller displacement is not a move (DESIGN 11, "left OBJ")

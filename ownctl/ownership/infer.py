@@ -37,13 +37,16 @@ def posterior(
     rule_sets: Mapping[str, Sequence[Rule]],
     permissions: Mapping[str, np.ndarray],
     noise: float = 0.05,
+    seen: Mapping[str, Frame] | None = None,
 ) -> np.ndarray:
     """Posterior ownership (n, m) of the frame's objects given their permissions.
 
     ``frame.own`` holds the priors. ``permissions[action]`` is a length-n vector of values in [0, 1]
     with NaN where the object has no permission for that action. Objects without any permission on
     an action that has rules keep their prior exactly. Rules that do not mention ownership change
-    nothing.
+    nothing. ``seen[action]`` (same objects and agents as ``frame``) holds the percepts each object
+    had when its permission of that action was given; an action's rules are evaluated on those
+    (default: ``frame``'s percepts).
     """
     out = frame.own.copy()
     actions = sorted(a for a, rules in rule_sets.items() if rules and a in permissions)
@@ -54,23 +57,27 @@ def posterior(
         if not key:
             continue
         idx = np.array([i for i, k in enumerate(keys) if k == key])
-        out[idx] = _posterior_group(frame.take(idx), [rule_sets[a] for a in key],
+        part = frame.take(idx)
+        views = [part if seen is None or a not in seen else seen[a].take(idx).with_own(part.own) for a in key]
+        out[idx] = _posterior_group(part, views, [rule_sets[a] for a in key],
                                     [np.asarray(permissions[a], dtype=float)[idx] for a in key], noise)
     return out
 
 
 def _posterior_group(
-    frame: Frame, rule_sets: list[Sequence[Rule]], values: list[np.ndarray], noise: float
+    frame: Frame, views: list[Frame], rule_sets: list[Sequence[Rule]], values: list[np.ndarray],
+    noise: float,
 ) -> np.ndarray:
-    """Posterior for objects that share the same set of evidenced actions."""
+    """Posterior for objects that share the same set of evidenced actions (``views``: each action's
+    percepts of them, with ``frame``'s priors)."""
     named, uses_any = relevant_atoms(rule_sets)
     named = tuple(a for a in named if a in frame.agents)
     if not named and not uses_any:
         return frame.own.copy()
     worlds = enumerate_worlds(frame, named, with_other=True)
     joint = worlds.weights.copy()  # (W, n)
-    for rules, f in zip(rule_sets, values, strict=True):
-        truth = rule_truth(rules, frame, worlds)
+    for view, rules, f in zip(views, rule_sets, values, strict=True):
+        truth = rule_truth(rules, view, worlds)
         p_say_forbid = np.where(truth, 1.0 - noise, noise)
         joint *= f[None, :] * p_say_forbid + (1.0 - f[None, :]) * (1.0 - p_say_forbid)
     total = joint.sum(axis=0)

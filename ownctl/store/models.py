@@ -129,10 +129,14 @@ class Permission(Base):
     value: Mapped[float] = mapped_column(Float)
     speaker: Mapped[str | None] = mapped_column(String(NAME))
     time: Mapped[float] = mapped_column(Float)
+    seq: Mapped[int | None] = mapped_column(Integer)  # arrival rank (given again: moves to the end)
+    seen: Mapped[dict[str, Any] | None] = mapped_column(JSON)  # the object's percepts when given
 
 
 class RuleRow(Base):
-    """A forbid rule in canonical text; ``origin`` is "given" or "learned"."""
+    """A rule in canonical text: a forbid rule of origin "given" or "learned", or an allow norm
+    (origin "allow", text ``allow ACTION if ...``) that the learner subtracts; ``rank`` orders an
+    action's rules as the learner left them."""
 
     __tablename__ = "rules"
     __table_args__ = (UniqueConstraint("action", "text"),)
@@ -142,6 +146,7 @@ class RuleRow(Base):
     origin: Mapped[str] = mapped_column(String(16))
     provenance: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)
     created: Mapped[float] = mapped_column(Float)
+    rank: Mapped[int | None] = mapped_column(Integer)
 
 
 class Setting(Base):
@@ -170,12 +175,13 @@ class TruthNorm(Base):
 
 
 class Conversation(Base):
-    """The conversation context (one row, id 1): speaker, current target, last refusal."""
+    """The conversation context (one row, id 1): speaker, current target and action, last refusal."""
 
     __tablename__ = "context"
     id: Mapped[int] = mapped_column(primary_key=True)
     speaker: Mapped[str | None] = mapped_column(String(NAME))
     target_id: Mapped[int | None] = mapped_column(ForeignKey("objects.id", ondelete="SET NULL"))
+    action: Mapped[str | None] = mapped_column(String(32))
     last_refusal: Mapped[dict[str, Any] | None] = mapped_column(JSON)
 
 

@@ -7,6 +7,7 @@ Beliefs about many (object, agent) pairs are written with one bulk UPDATE by pri
 
 from __future__ import annotations
 
+from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 from typing import Any
@@ -105,6 +106,13 @@ class Tx:
             raise UnknownName("object", name, self.session.scalars(select(Object.name)))
         return row
 
+    def object_name(self, object_id: int) -> str:
+        """The name of the object with primary key ``object_id``."""
+        name = self.session.scalar(select(Object.name).where(Object.id == object_id))
+        if name is None:
+            raise UnknownName("object", f"#{object_id}", self.session.scalars(select(Object.name)))
+        return name
+
     def object_by_id(self, object_id: int) -> Object | None:
         """The object with primary key ``object_id``, if any."""
         return self.session.get(Object, object_id)
@@ -119,6 +127,31 @@ class Tx:
         if ids:
             self.session.execute(insert(Ownership), [{"object_id": row.id, "agent_id": a} for a in ids])
         return row
+
+    def remove_objects(self, object_ids: Sequence[int]) -> None:
+        """Forget objects (their beliefs, touches, categories and permissions cascade)."""
+        ids = list(object_ids)
+        for start in range(0, len(ids), CHUNK):
+            chunk = ids[start : start + CHUNK]
+            for model in (Ownership, Touch, Category, Permission, TruthOwner):
+                self.session.execute(delete(model).where(model.object_id.in_(chunk)))
+            self.session.execute(update(Conversation).where(Conversation.target_id.in_(chunk))
+                                 .values(target_id=None))
+            self.session.execute(delete(Object).where(Object.id.in_(chunk)))
+        for model in (Object, Ownership, Permission, Conversation):
+            self._expire(model)
+
+    def set_percepts(self, object_id: int, row: dict[str, Any]) -> None:
+        """Store an object's colour and position (``row``: color, x, y, z)."""
+        self.session.execute(update(Object).where(Object.id == object_id)
+                             .values(color=row["color"], x=row["x"], y=row["y"], z=row["z"]))
+        self._expire(Object)
+
+    def vocabulary(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        """The distinct colours and categories of every stored object, sorted."""
+        colors = self.session.scalars(select(Object.color).where(Object.color.is_not(None)).distinct())
+        cats = self.session.scalars(select(Category.category).distinct())
+        return tuple(sorted(c for c in colors if c)), tuple(sorted(cats))
 
     def categories(self, object_ids: Sequence[int] | None = None) -> dict[int, set[str]]:
         """object id -> its categories (of every object, or only of ``object_ids``)."""
@@ -282,7 +315,7 @@ class Tx:
         """Many new objects at once (dicts of name, color, x, y, z), each with an ownership row per
         agent; returns name -> id. Duplicate names (among them or with stored objects) are refused."""
         names = [s["name"] for s in specs]
-        taken = sorted(self._object_ids(names)) or sorted(n for n in set(names) if names.count(n) > 1)
+        taken = sorted(self._object_ids(names)) or sorted(n for n, k in Counter(names).items() if k > 1)
         if taken:
             raise DuplicateName(f"object {taken[0]!r} already exists; choose another name")
         if not specs:
@@ -337,19 +370,48 @@ class Tx:
         return list(self.session.execute(select(*cols).order_by(Permission.id)))
 
     def set_permission(
-        self, action: str, object_id: int, value: float, speaker: str | None, now: float
+        self, action: str, object_id: int, value: float, speaker: str | None, now: float,
+        seq: int | None = None, seen: dict[str, Any] | None = None,
     ) -> Permission:
-        """Insert or overwrite the permission for (action, object); the last instruction wins."""
+        """Insert or overwrite the permission for (action, object) with its arrival rank and the
+        object's percepts when it was given; the last instruction wins."""
         row = self.session.scalar(
             select(Permission).where(Permission.action == action, Permission.object_id == object_id)
         )
         if row is None:
-            row = Permission(action=action, object_id=object_id, value=value, speaker=speaker, time=now)
+            row = Permission(action=action, object_id=object_id, value=value, speaker=speaker, time=now,
+                             seq=seq, seen=seen)
             self.session.add(row)
         else:
-            row.value, row.speaker, row.time = value, speaker, now
+            row.value, row.speaker, row.time, row.seq, row.seen = value, speaker, now, seq, seen
         self.session.flush()
         return row
+
+    def delete_permission(self, action: str, object_id: int) -> None:
+        """Forget the permission for (action, object), if any."""
+        self.session.execute(delete(Permission).where(Permission.action == action,
+                                                      Permission.object_id == object_id))
+        self._expire(Permission)
+
+    def permission_rows(self, object_ids: Sequence[int] | None = None) -> list[Any]:
+        """Permissions as plain rows with every column (of every object, or only of ``object_ids``)."""
+        query = select(*Permission.__table__.columns).order_by(Permission.id)
+        if object_ids is None:
+            return list(self.session.execute(query))
+        out: list[Any] = []
+        ids = list(object_ids)
+        for start in range(0, len(ids), CHUNK):
+            out += self.session.execute(query.where(Permission.object_id.in_(ids[start : start + CHUNK])))
+        return sorted(out, key=lambda r: r.id)
+
+    def max_permission_seq(self) -> int:
+        """The highest arrival rank of any permission (0 without any)."""
+        return int(self.session.scalar(select(func.max(func.coalesce(Permission.seq, Permission.id)))) or 0)
+
+    def permission_id(self, action: str, object_id: int) -> int | None:
+        """The id of the permission for (action, object), if any."""
+        return self.session.scalar(select(Permission.id).where(Permission.action == action,
+                                                               Permission.object_id == object_id))
 
     def permission(self, permission_id: int) -> Permission:
         """The permission with id ``permission_id``."""
@@ -362,7 +424,7 @@ class Tx:
     # -- rules ----------------------------------------------------------------------------------
     def rules(self, action: str | None = None) -> list[RuleRow]:
         """Rules (all, or one action's), by id."""
-        query = select(RuleRow).order_by(RuleRow.id)
+        query = select(RuleRow).order_by(RuleRow.action, RuleRow.rank, RuleRow.id)
         if action is not None:
             query = query.where(RuleRow.action == action)
         return list(self.session.scalars(query))
@@ -389,14 +451,25 @@ class Tx:
     def replace_rules(
         self, action: str, rules: Sequence[tuple[str, str, dict[str, Any]]], now: float
     ) -> None:
-        """Make ``rules`` (text, origin, provenance) the rule set of ``action``; kept rules keep their ids."""
+        """Make ``rules`` (text, origin, provenance), in this order, the rules of ``action``; kept
+        rules keep their ids and creation times."""
         wanted = {t for t, _, _ in rules}
+        old = {}
         for row in self.rules(action):
             if row.text not in wanted:
                 self.session.delete(row)
+            else:
+                old[row.text] = row
         self.session.flush()
-        for text_, origin, provenance in rules:
-            self.add_rule(action, text_, origin, provenance, now)
+        for rank, (text_, origin, provenance) in enumerate(rules):
+            row = old.get(text_)
+            if row is None:
+                row = RuleRow(action=action, text=text_, origin=origin, provenance=provenance, created=now)
+                self.session.add(row)
+            else:
+                row.origin, row.provenance = origin, provenance
+            row.rank = rank
+        self.session.flush()
 
     # -- settings, truth, context, events, bulk deletes -----------------------------------------
     def settings(self) -> dict[str, Any]:
@@ -448,32 +521,26 @@ class Tx:
         return row
 
     def conversation(self) -> Talk:
-        """The conversation context (empty when nothing was said or checked yet).
-
-        The ``last_refusal`` JSON column holds ``{"action": current action, "refusal": {...}}``; a bare
-        refusal record (``{"action", "object", ...}``) is read as both the refusal and the action.
-        """
+        """The conversation context (empty when nothing was said or checked yet)."""
         row = self.session.get(Conversation, 1)
         if row is None:
             return Talk()
         target = self.object_by_id(row.target_id) if row.target_id is not None else None
-        raw = row.last_refusal or {}
-        refusal = raw if "object" in raw else raw.get("refusal")
-        return Talk(row.speaker, target.name if target else None, raw.get("action"), refusal)
+        return Talk(row.speaker, target.name if target else None, row.action, row.last_refusal)
 
     def converse(
         self, *, speaker: Any = KEEP, target: Any = KEEP, action: Any = KEEP, refusal: Any = KEEP
     ) -> Talk:
         """Update the parts of the conversation given (None clears one); returns the new context."""
-        now = self.conversation()
         row = self.context()
         if speaker is not KEEP:
             row.speaker = speaker
         if target is not KEEP:
             row.target_id = None if target is None else self.object(target).id
-        action = now.action if action is KEEP else action
-        refusal = now.refusal if refusal is KEEP else refusal
-        row.last_refusal = {"action": action, "refusal": refusal}
+        if action is not KEEP:
+            row.action = action
+        if refusal is not KEEP:
+            row.last_refusal = refusal
         self.session.flush()
         return self.conversation()
 

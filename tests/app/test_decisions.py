@@ -46,8 +46,10 @@ def test_belief_precedence(ctx: AppContext) -> None:
         (row,) = [b for b in tx.ownership() if b.claim_p is not None]
         assert decision_belief(row) == (0.9, "inference")
         assert induction_belief(row) == (0.8, "claim")
+    # decisions use the Mind's posterior, computed from the permissions on the object: with none,
+    # the claim decides, whatever a stale posterior column says
     atoms = decide.check(ctx, "trash", "wallet").data["atoms"]
-    assert atoms[0] == {"agent": "alexis", "p": 0.9, "source": "inference"}
+    assert atoms[0] == {"agent": "alexis", "p": 0.8, "source": "claim"}
 
 
 def test_rules_sharing_atoms_are_exact(ctx: AppContext) -> None:

@@ -60,7 +60,8 @@ def test_wallet_owned_by_alexis_with_p_0_75_is_forbidden_with_0_75(run: Ownctl) 
 def test_wallet_with_a_second_tracked_agent_and_prediction_disabled(run: Ownctl) -> None:
     """The paper's figure assumes Alexis is the only agent tracked. With Xuan tracked too, a claim
     about Xuan elsewhere makes the predictor give Xuan a prior on the wallet, which ``ownedBy any``
-    rightly adds (a noisy-or); with prediction disabled only claims count, and the figure is 0.75."""
+    rightly adds (a noisy-or); with prediction disabled an agent without claims keeps the calibrated
+    base rate (never an empty prior), so the figure is 1 - 0.25 * 0.75."""
     batch(run, "agent add alexis\nagent add xuan\nobject add wallet --color brown --pos 0.3,0.1,0\n"
                "object add mug --color red --pos 0.31,0.1,0\n")
     run("claim", "mug", "xuan")
@@ -72,12 +73,12 @@ def test_wallet_with_a_second_tracked_agent_and_prediction_disabled(run: Ownctl)
     assert predicted["p_forbidden"] == pytest.approx(1 - 0.25 * (1 - xuan["p"]), abs=1e-12)
 
     run("disable", "prediction")
-    run("reset", "claims", "--yes")  # claims and what was predicted from them go; nothing is re-predicted
+    run("reset", "claims", "--yes")  # claims and what was predicted from them go; priors: the base rate
     run("claim", "mug", "xuan")
     run("claim", "wallet", "alexis", "--p", "0.75")
     report = run.json("check", "trash", "wallet", code=3)
-    assert report["p_forbidden"] == pytest.approx(0.75, abs=1e-12)
-    assert {a["agent"]: a["source"] for a in report["atoms"]} == {"alexis": "claim", "xuan": "none"}
+    assert report["p_forbidden"] == pytest.approx(1 - 0.25 * 0.75, abs=1e-12)
+    assert {a["agent"]: a["source"] for a in report["atoms"]} == {"alexis": "claim", "xuan": "base-rate"}
 
 
 # -- "Don't, that's Casey's!" ----------------------------------------------------------------------

@@ -6,7 +6,7 @@
   provenance; posteriors follow; ``owners`` shows claim, prior and posterior;
 * ``disable inference``, ``disable prediction``, ``freeze rules`` and ``freeze perms`` do what they say;
 * every instruction is in the event log;
-* the store computes exactly what the in-memory :class:`~ownctl.experiment.mind.Mind` computes from
+* the store computes exactly what the in-memory :class:`~ownctl.mind.Mind` computes from
   the same instructions.
 """
 
@@ -20,15 +20,15 @@ import numpy as np
 import pytest
 from sqlalchemy import event
 
+import ownctl.mind.core as mind_core
 from ownctl.app import admin, decide, instruct, query, things
-from ownctl.app import learning as app_learning
-from ownctl.app.beliefs import decision_belief, induction_belief, snapshot
+from ownctl.app.beliefs import decision_belief, induction_belief
 from ownctl.app.context import AppContext
 from ownctl.app.worldfile import store_world
 from ownctl.errors import OwnctlError
-from ownctl.experiment.mind import Mind
 from ownctl.experiment.truth import true_rules
 from ownctl.logic.prob import p_forbidden
+from ownctl.mind import Mind
 from ownctl.world.generator import paper_blocks_world
 from ownctl.world.model import make_frame
 
@@ -36,6 +36,7 @@ NOW = 1000.0
 
 
 @pytest.fixture
+
 def ctx(tmp_path: Path) -> Iterator[AppContext]:
     ctx = AppContext(str(tmp_path / "s.db"), now=NOW)
     ctx.store(create=True)
@@ -105,7 +106,7 @@ def test_priors_are_written_in_bulk(ctx: AppContext, n: int) -> None:
     instruct.add_claim(ctx, "o0", "alexis")
     # the claim itself, the priors of every object in one executemany, posteriors cleared: O(1) statements
     assert len(calls) <= 4, calls
-    assert max(calls) == n  # one statement carries every object's prior
+    assert sum(calls) == n  # one row per object: the claimed one with its claim, the others in one statement
 
 
 def test_exclusive_claim_repredicts_every_agent_it_touches(ctx: AppContext) -> None:
@@ -180,8 +181,8 @@ def test_induction_sees_priors_and_decisions_see_posteriors(
     instruct.add_permission(ctx, "trash", "o2", 1.0)  # o2: predicted prior only; the posterior rises
     admin.set_flag(ctx, "frozen.rules", False)
     with ctx.read() as tx:
-        prior = snapshot(tx, ctx.now, induction_belief, only=["o2", "o1"]).own
-        post = snapshot(tx, ctx.now, decision_belief, only=["o2", "o1"]).own
+        prior = stored_beliefs(tx, induction_belief, ["o2", "o1"])[0]
+        post = stored_beliefs(tx, decision_belief, ["o2", "o1"])[0]
     assert post[0, 0] > prior[0, 0] and prior[1, 0] == 0.4
     owners = {o["agent"]: o for o in query.owners(ctx, "o2")["owners"]}
     assert owners["alexis"]["claim"] is None and owners["alexis"]["prior"] == prior[0, 0]
@@ -190,13 +191,13 @@ def test_induction_sees_priors_and_decisions_see_posteriors(
     assert atoms["alexis"] == {"agent": "alexis", "p": post[0, 0], "source": "inference"}
 
     seen: list[np.ndarray] = []
-    real = app_learning.learn_permission
+    real = mind_core.learn_permission
 
     def spy(action: str, rules: Any, allows: Any, ev: Any, *rest: Any) -> Any:
         seen.append(ev.frame.own.copy())
         return real(action, rules, allows, ev, *rest)
 
-    monkeypatch.setattr(app_learning, "learn_permission", spy)
+    monkeypatch.setattr(mind_core, "learn_permission", spy)
     instruct.add_permission(ctx, "trash", "o1", 1.0)
     assert len(seen) == 1 and np.array_equal(seen[0], prior)  # examples in permission order: o2, o1
 
@@ -335,8 +336,8 @@ def compare(ctx: AppContext, mind: Mind) -> None:
     mind_rules = sorted((a, r.text()) for a, rs in mind.rules.items() for r in rs)
     assert store_rules == mind_rules
     with ctx.read() as tx:
-        prior = snapshot(tx, ctx.now, induction_belief).own
-        post = snapshot(tx, ctx.now, decision_belief).own
+        prior = stored_beliefs(tx, induction_belief)[0]
+        post = stored_beliefs(tx, decision_belief)[0]
     assert np.allclose(prior, mind.prior, atol=1e-12)
     assert np.allclose(post, mind.posterior(), atol=1e-12)
 
@@ -386,7 +387,18 @@ def test_an_agent_without_claims_has_the_calibrated_prior_as_in_the_mind(ctx: Ap
     small_world(ctx, 3)
     instruct.add_claim(ctx, "o0", "alexis")
     with ctx.read() as tx:
-        snap = snapshot(tx, ctx.now, induction_belief)
-    xuan = snap.agents.index("xuan")
-    assert np.allclose(snap.own[:, xuan], PredictConfig().base_rate)
-    assert {s[xuan] for s in snap.sources} == {"base-rate"}
+        own, sources = stored_beliefs(tx, induction_belief)
+        xuan = [a.name for a in tx.agents()].index("xuan")
+    assert np.allclose(own[:, xuan], PredictConfig().base_rate)
+    assert {s[xuan] for s in sources} == {"base-rate"}
+
+def stored_beliefs(tx: Any, belief: Any, only: list[str] | None = None) -> tuple[np.ndarray, list[list[str]]]:
+    """The store's beliefs as read by ``belief`` (objects in id order, or in ``only``'s order)."""
+    agents = {a.id: j for j, a in enumerate(tx.agents())}
+    ids = [r.id for r in tx.object_table()] if only is None else [tx.object(n).id for n in only]
+    row = {oid: i for i, oid in enumerate(ids)}
+    own = np.zeros((len(ids), len(agents)))
+    sources = [["none"] * len(agents) for _ in ids]
+    for b in tx.belief_table(ids):
+        own[row[b.object_id], agents[b.agent_id]], sources[row[b.object_id]][agents[b.agent_id]] = belief(b)
+    return own, sources

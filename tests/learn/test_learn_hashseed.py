@@ -22,7 +22,7 @@ SCRIPT = r'''
 import json, os, sys, tempfile
 import numpy as np
 from ownctl.config import LearnConfig, Settings
-from ownctl.experiment.mind import Mind, Switches
+from ownctl.mind import Mind, Switches
 from ownctl.experiment.norms import noisy_labels
 from ownctl.experiment.truth import true_rules
 from ownctl.logic.prob import p_forbidden

@@ -1,6 +1,6 @@
 """Incremental norm induction (``ownctl.learn.induce``): the four entry points, the gate, both learners.
 
-The paper's stories are checked on the in-memory :class:`~ownctl.experiment.mind.Mind` (the store
+The paper's stories are checked on the in-memory :class:`~ownctl.mind.Mind` (the store
 runs the same core; its wiring is tested in tests/app/test_learning_store.py), and the algorithms'
 laws on hand-built evidence: a given forbid norm is specialised against allowed examples (Gricean),
 an allow norm is subtracted, the conflict gate keeps accurate rules, cover/uncover example fix the
@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 
 from ownctl.config import LearnConfig, Settings
-from ownctl.experiment.mind import Mind
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import Inducer, learn_norm, learn_permission, subtract
 from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import Literal, Rule, implies, parse_norm, parse_rule
+from ownctl.mind import Mind
 from ownctl.world.model import ObjectSpec
 
 LEARNERS = ("paper", "ours")

@@ -30,9 +30,9 @@ def play(*args: str, code: int | None = 0) -> Result:
 def test_a_reprimand_during_a_run_teaches_its_norm_before_its_permission() -> None:
     """Otherwise one example would induce 'forbid trash' first and the norm would be dropped."""
     from ownctl.app.run import Interrupt, teach_utterance
-    from ownctl.experiment.mind import Mind
     from ownctl.experiment.task import Attempt, get_task
     from ownctl.logic.rules import parse_rule
+    from ownctl.mind import Mind
     from ownctl.world.model import ObjectSpec
 
     mind = Mind(("xuan",), [ObjectSpec("mug", "red", (0.0, 0.0, 0.0))], ())

@@ -51,7 +51,9 @@ def test_every_revision_has_a_downgrade_and_named_constraints() -> None:
     assert revisions and revisions[0].revision == head_revision()
     for rev in revisions:
         source = Path(rev.path).read_text()
-        assert "def downgrade()" in source and "op.f(" in source
+        assert "def downgrade()" in source
+        if any(word in source for word in ("Constraint(", "ForeignKey(", "create_index(")):
+            assert "op.f(" in source  # constraints carry the naming convention's names
     assert (migrations_dir() / "versions").is_dir()
 
 

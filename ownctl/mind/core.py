@@ -1,0 +1,621 @@
+"""The robot's mind: the one place where prediction, induction and inference are put together.
+
+A :class:`Mind` holds what a robot knows and believes about a world: its objects with their
+current percepts, agents and areas; ownership claims, percept-based predictions (priors) and
+rule-based posteriors; object-specific permissions, each with the percepts its object had when it
+was given; given norms, allow norms and learned rules, each with where it came from; and the
+switches that turn components off. Every instruction is a method (see ``docs/architecture.md``):
+
+- :meth:`claim` -> the agent's predictor is refitted (lazily) -> posteriors follow;
+- :meth:`permit` -> the conflict gate -> induction on the action's examples -> posteriors follow;
+- :meth:`instruct` -> cover rule (forbid) or uncover rule (allow);
+- :meth:`touch`, :meth:`set_percepts`, :meth:`add_objects`, :meth:`remove_object`,
+  :meth:`add_agent`, :meth:`remove_agent`, :meth:`add_area`, :meth:`remove_area`,
+  :meth:`remove_permission`, :meth:`remove_rule`, :meth:`reset`, :meth:`set_switch`.
+
+Claims override predictions to give the prior; induction sees priors; decisions see posteriors;
+inference never feeds prediction (the paper's anti-bias design). Experiments, task runs, scenarios
+and every store-backed command drive this class; the store only loads and saves its state.
+
+Times are absolute seconds on one clock (:attr:`Mind.now`, the store's clock): an object's
+``last_touch`` maps agents to the time of their last interaction, and predictions use the age
+``now - time``. A Mind may hold only some of a store's objects (``complete=False``, with the
+store-wide vocabulary given): enough for instructions that read only those objects (a permission
+reads the objects that carry permissions; a check reads one object); refitting a predictor needs
+every object and is refused on a partial Mind.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+import numpy as np
+
+from ownctl.config import Settings
+from ownctl.errors import DuplicateName, OwnctlError
+from ownctl.learn.evidence import Evidence, Vocabulary
+from ownctl.learn.induce import Outcome, learn_norm, learn_permission
+from ownctl.logic.frame import Frame
+from ownctl.logic.prob import p_forbidden
+from ownctl.logic.rules import Norm, Rule
+from ownctl.logic.vocab import ACTIONS
+from ownctl.ownership.features import agent_features
+from ownctl.ownership.infer import posterior
+from ownctl.ownership.predict import KernelOwnershipModel
+from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
+
+#: A permission value at or above this forbids its step (also the learner's cover threshold).
+PERMISSION_CUT = 0.5
+#: The switch keys of :meth:`Mind.set_switch` and the attribute of :class:`Switches` each sets.
+SWITCHES = {
+    "frozen.perms": ("frozen_perms", True),
+    "frozen.rules": ("frozen_rules", True),
+    "disabled.inference": ("inference", False),
+    "disabled.prediction": ("prediction", False),
+}
+RESETS = ("perms", "rules", "claims", "all")
+ORIGINS = ("given", "learned", "allow")
+BASE_RATE = "base-rate"
+KEEP: Any = object()  # "leave this percept as it is" (set_percepts)
+
+
+@dataclass
+class Switches:
+    """The components that can be switched off (paper: disable inference / extrapolation, freeze)."""
+
+    inference: bool = True
+    prediction: bool = True
+    frozen_perms: bool = False
+    frozen_rules: bool = False
+
+
+@dataclass(frozen=True)
+class Given:
+    """One object-specific permission: its value (1 forbid, 0 allow), its arrival rank, the
+    object's percepts when it was given (``seen``; touch times absolute), who gave it and when."""
+
+    value: float
+    seq: int
+    seen: ObjectSpec
+    speaker: str | None = None
+    time: float = 0.0
+
+
+@dataclass(frozen=True)
+class RuleInfo:
+    """Where a rule came from: ``origin`` (given, learned or allow) and its provenance record."""
+
+    origin: str
+    provenance: Mapping[str, Any] = field(default_factory=dict)
+
+
+@dataclass(frozen=True)
+class ClaimInfo:
+    """Who made a claim, with what trust, when."""
+
+    speaker: str | None = None
+    trust: float = 1.0
+    time: float = 0.0
+
+
+@dataclass(frozen=True)
+class NormResult:
+    """What a given norm changed in its action's forbid rules."""
+
+    outcome: Outcome
+    added: tuple[Rule, ...]
+    removed: tuple[Rule, ...]
+
+
+def _names_rule(rule: Rule, pred: str, name: str) -> bool:
+    return any(lit.atom == (pred, name) for lit in rule.literals)
+
+
+class Mind:
+    """Beliefs about ``objects`` owned by ``agents``; belief arrays are indexed (object, agent).
+
+    ``objects``' ``last_touch`` values are ages at ``now`` (as world descriptions give them) unless
+    ``touch_times`` is true, when they are absolute times. ``vocabulary`` fixes the colours and
+    categories induction may use (the store-wide ones, for a partial Mind); by default they are
+    those of the objects held.
+    """
+
+    def __init__(
+        self,
+        agents: Sequence[str],
+        objects: Sequence[ObjectSpec],
+        areas: Sequence[Area],
+        settings: Settings | None = None,
+        switches: Switches | None = None,
+        *,
+        now: float = 0.0,
+        touch_times: bool = False,
+        complete: bool = True,
+        vocabulary: Vocabulary | None = None,
+    ) -> None:
+        self.settings = settings or Settings()
+        self.switches = switches or Switches()
+        self.now = float(now)
+        self.complete = complete
+        self.agents: tuple[str, ...] = tuple(agents)
+        self.areas: list[Area] = list(areas)
+        self.objects: list[ObjectSpec] = [
+            o if touch_times else replace(o, last_touch={a: self.now - t for a, t in o.last_touch.items()})
+            for o in objects
+        ]
+        self._fixed_vocab = vocabulary
+        n, m = len(self.objects), len(self.agents)
+        base = self._base_rate()
+        self.claims = np.full((n, m), np.nan)
+        self.claim_info: dict[tuple[str, str], ClaimInfo] = {}
+        self.predicted = np.full((n, m), base)
+        self.prior_source = np.full((n, m), BASE_RATE, dtype=object)
+        self.perms: dict[str, dict[str, Given]] = {a: {} for a in ACTIONS}
+        self.rules: dict[str, tuple[Rule, ...]] = {a: () for a in ACTIONS}
+        self.allows: dict[str, list[Rule]] = {a: [] for a in ACTIONS}
+        self.info: dict[str, dict[Rule, RuleInfo]] = {a: {} for a in ACTIONS}
+        self._seq = 0
+        self._reindex()
+        self._stale: set[str] = set()  # agents whose predictions must be refitted before use
+        self._posterior: np.ndarray | None = None
+
+    # -- structure ---------------------------------------------------------------------------
+    def _reindex(self) -> None:
+        self.index = {o.name: i for i, o in enumerate(self.objects)}
+        self._frame: Frame | None = None
+        self._posterior = None
+
+    def _base_rate(self) -> float:
+        return float(KernelOwnershipModel(self.settings.predict).fit(np.zeros((0, 0)), np.zeros(0)).base_)
+
+    @property
+    def vocab(self) -> Vocabulary:
+        """The atoms induction may use: agents, colours, areas and categories."""
+        if self._fixed_vocab is not None:
+            colors, cats = self._fixed_vocab.colors, self._fixed_vocab.categories
+        else:
+            colors = tuple(sorted({o.color for o in self.objects if o.color}))
+            cats = tuple(sorted({c for o in self.objects for c in o.categories}))
+        return Vocabulary(self.agents, colors, tuple(a.name for a in self.areas), cats)
+
+    def at(self, now: float) -> Mind:
+        """Set the clock to ``now`` (the time of the next instruction); returns self."""
+        self.now = float(now)
+        return self
+
+    def obj(self, ref: int | str) -> int:
+        """The index of an object given by index or name (KeyError naming it if unknown)."""
+        if isinstance(ref, str):
+            if ref not in self.index:
+                raise KeyError(ref)
+            return self.index[ref]
+        return int(ref)
+
+    def _column(self, agent: str) -> int:
+        if agent not in self.agents:
+            raise KeyError(agent)
+        return self.agents.index(agent)
+
+    # -- beliefs -----------------------------------------------------------------------------
+    @property
+    def prior(self) -> np.ndarray:
+        """Claims where they exist, else predictions (n, m)."""
+        self.refresh()
+        return np.where(np.isnan(self.claims), self.predicted, self.claims)
+
+    def refresh(self) -> None:
+        """Refit the predictors made stale by claims, touches or percepts (predictions are a pure
+        function of the claims and the percepts, so computing them when first needed changes no
+        result)."""
+        for agent in sorted(self._stale):
+            if agent in self.agents:
+                self._predict(self.agents.index(agent))
+        self._stale.clear()
+
+    def _stale_agents(self, agents: Iterable[str]) -> None:
+        fresh = set(agents)
+        if fresh and self.switches.prediction and not self.complete:
+            raise RuntimeError("refitting a predictor needs every object; load the whole store")
+        self._stale.update(fresh)
+        self._posterior = None
+
+    def _claimed_agents(self) -> list[str]:
+        return [a for j, a in enumerate(self.agents) if not np.isnan(self.claims[:, j]).all()]
+
+    def _predict(self, j: int) -> None:
+        if not self.switches.prediction:
+            return
+        cfg = self.settings.predict
+        agent = self.agents[j]
+        ages = np.array([max(0.0, self.now - o.last_touch[agent]) if agent in o.last_touch else np.nan
+                         for o in self.objects])
+        X = agent_features(positions(self.objects), [o.color for o in self.objects], ages,
+                           self.vocab.colors, cfg)
+        known = ~np.isnan(self.claims[:, j])
+        model = KernelOwnershipModel(cfg).fit(X[known], self.claims[known, j])
+        self.predicted[:, j] = model.predict_proba(X)
+        self.prior_source[:, j] = model.source_
+
+    def frame(self, own: np.ndarray | None = None) -> Frame:
+        """The evaluation frame of all objects (current percepts) with ``own`` (default: posterior)."""
+        if self._frame is None:
+            n, m = len(self.objects), len(self.agents)
+            self._frame = make_frame(self.objects, self.areas, self.agents, np.zeros((n, m)))
+        return self._frame.with_own(self.posterior() if own is None else own)
+
+    def permitted(self) -> list[int]:
+        """Indices of the objects that carry some permission, ascending."""
+        return sorted({self.index[name] for given in self.perms.values() for name in given})
+
+    def posterior(self) -> np.ndarray:
+        """Rule-based posterior (n, m): the prior, conditioned on each object's permissions (each
+        evaluated on the percepts its object had when it was given); the prior when inference is off."""
+        if self._posterior is None:
+            prior = self.prior
+            out = prior.copy()
+            idx = self.permitted()
+            if self.switches.inference and idx:
+                where = {i: k for k, i in enumerate(idx)}
+                values: dict[str, np.ndarray] = {}
+                seen: dict[str, Frame] = {}
+                for action, given in self.perms.items():
+                    if not given:
+                        continue
+                    vec = np.full(len(idx), np.nan)
+                    specs = [self.objects[i] for i in idx]
+                    for name, g in given.items():
+                        k = where[self.index[name]]
+                        vec[k], specs[k] = g.value, g.seen
+                    values[action] = vec
+                    seen[action] = make_frame(specs, self.areas, self.agents, prior[idx])
+                current = make_frame([self.objects[i] for i in idx], self.areas, self.agents, prior[idx])
+                out[idx] = posterior(current, self.rules, values, self.settings.infer.noise, seen)
+            self._posterior = out
+        return self._posterior
+
+    def _changed(self) -> None:
+        self._posterior = None
+
+    # -- knowledge ---------------------------------------------------------------------------
+    def given(self, action: str) -> list[Rule]:
+        """The action's forbid rules that stand for what instructors said."""
+        return [r for r in self.rules[action] if self.info[action][r].origin == "given"]
+
+    def ordered(self, action: str) -> list[tuple[str, Given]]:
+        """The action's permissions as (object name, permission), in arrival order."""
+        return sorted(self.perms[action].items(), key=lambda kv: kv[1].seq)
+
+    def evidence(self, action: str) -> tuple[Evidence, list[int]]:
+        """The action's permissions (arrival order) as examples on prior ownership, and their objects.
+
+        Each example keeps the percepts its object had when the permission was given: a permission
+        describes the object where it was, not where the robot put it afterwards.
+        """
+        given = self.ordered(action)
+        idx = [self.index[name] for name, _ in given]
+        frame = make_frame([g.seen for _, g in given], self.areas, self.agents, self.prior[idx])
+        return Evidence(frame, [g.value for _, g in given]), idx
+
+    def _set_rules(self, action: str, rules: Sequence[Rule], ev: Evidence, idx: Sequence[int],
+                   said: Mapping[Rule, Mapping[str, Any]]) -> None:
+        """Make ``rules`` the action's forbid rules. Rules kept keep their origin; rules in ``said``
+        (what an instructor just stated, or its pieces) are given; other new rules are learned, with
+        the forbidden examples they cover as provenance."""
+        old = self.info[action]
+        info: dict[Rule, RuleInfo] = {r: i for r, i in old.items() if i.origin == "allow"}
+        unique = list(dict.fromkeys(rules))
+        for rule in unique:
+            if rule in said and (rule not in old or old[rule].origin != "given"):
+                info[rule] = RuleInfo("given", dict(said[rule]))
+            elif rule in old and old[rule].origin != "allow":
+                info[rule] = old[rule]
+            else:
+                covered = ev.prob(ev.truth(rule)) >= PERMISSION_CUT
+                names = [self.objects[i].name for i, c, pos in zip(idx, covered, ev.positives, strict=True)
+                         if c and pos]
+                info[rule] = RuleInfo("learned", {"examples": names, "learned_at": self.now})
+        self.rules[action] = tuple(unique)
+        self.info[action] = info
+        self._changed()
+
+    # -- instructions: ownership ---------------------------------------------------------------
+    def claim(self, obj: int | str, agent: str, p: float = 1.0, *, negated: bool = False,
+              exclusive: bool = False, speaker: str | None = None) -> float:
+        """An ownership claim, weighted by trust (``1 - trust * p`` for "not mine"); an exclusive
+        claim sets every other agent's claim to 0. Returns the stored probability."""
+        i, j = self.obj(obj), self._column(agent)
+        trust = self.settings.trust
+        stored = 1.0 - trust * p if negated else trust * p
+        name, meta = self.objects[i].name, ClaimInfo(speaker, trust, self.now)
+        self.claims[i, j] = stored
+        self.claim_info[(name, agent)] = meta
+        changed = [agent]
+        if exclusive:
+            for k, other in enumerate(self.agents):
+                if k != j:
+                    self.claims[i, k] = 0.0
+                    self.claim_info[(name, other)] = meta
+                    changed.append(other)
+        self._stale_agents(changed)
+        return stored
+
+    def touch(self, obj: int | str, agent: str, time: float) -> None:
+        """``agent`` interacted with the object at absolute ``time`` (a percept of prediction)."""
+        i = self.obj(obj)
+        self._column(agent)
+        spec = self.objects[i]
+        self.objects[i] = replace(spec, last_touch={**spec.last_touch, agent: float(time)})
+        self._stale_agents([agent])
+
+    def set_percepts(self, obj: int | str, *, color: Any = KEEP, position: Any = KEEP,
+                     categories: Any = KEEP) -> None:
+        """Change an object's percepts (KEEP leaves one as it is): areas and predictions follow."""
+        i = self.obj(obj)
+        spec = self.objects[i]
+        if color is not KEEP:
+            spec = replace(spec, color=color)
+        if position is not KEEP:
+            spec = replace(spec, position=None if position is None else tuple(float(v) for v in position))
+        if categories is not KEEP:
+            spec = replace(spec, categories=frozenset(categories))
+        if spec == self.objects[i]:
+            return
+        palette = self.vocab.colors
+        self.objects[i] = spec
+        self._frame = None
+        stale = self.agents if self.vocab.colors != palette else self._claimed_agents()
+        self._stale_agents(stale)
+        self._changed()
+
+    def move(self, obj: int | str, position: Position | None) -> None:
+        """The object is now at ``position``."""
+        self.set_percepts(obj, position=position)
+
+    # -- instructions: permissions and norms ---------------------------------------------------
+    def permit(self, action: str, obj: int | str, value: float, speaker: str | None = None) -> Outcome | None:
+        """An object-specific permission (1 forbid, 0 allow): store, gate, induce, re-infer.
+
+        Ignored (None) while permissions are frozen; stored without induction while rules are.
+        """
+        if self.switches.frozen_perms:
+            return None
+        i = self.obj(obj)
+        name = self.objects[i].name
+        self.perms[action].pop(name, None)
+        self._seq += 1
+        self.perms[action][name] = Given(float(value), self._seq, self.objects[i], speaker, self.now)
+        self._changed()
+        if self.switches.frozen_rules:
+            return None
+        ev, idx = self.evidence(action)
+        out = learn_permission(action, self.rules[action], self.allows[action], ev, len(idx) - 1,
+                               self.vocab, self.settings.learn, self.given(action))
+        if out.induced and out.rules != self.rules[action]:
+            self._set_rules(action, out.rules, ev, idx, {})
+        return out
+
+    def instruct(self, norm: Norm, speaker: str | None = None) -> NormResult | None:
+        """A one-shot norm: cover rule (forbid) or uncover rule (allow); None while rules are frozen.
+
+        An allow norm is kept as a rule of origin ``allow`` and subtracted again after re-induction.
+        """
+        if self.switches.frozen_rules:
+            return None
+        action = norm.rule.action
+        ev, idx = self.evidence(action)
+        before, old_given = self.rules[action], self.given(action)
+        out = learn_norm(norm, before, ev, self.vocab, self.settings.learn, self.allows[action], old_given)
+        said: dict[Rule, dict[str, Any]] = {}
+        for r in out.given:
+            if r in old_given:
+                continue
+            if norm.sign == "allow":
+                parent = next((g for g in old_given if g.conditions <= r.conditions), None)
+                said[r] = {"given": parent.text() if parent else None, "minus": norm.text(),
+                           "speaker": speaker}
+            else:
+                said[r] = {"given": norm.text(), "speaker": speaker, "specialised": r != norm.rule}
+        self._set_rules(action, out.rules, ev, idx, said)
+        if norm.sign == "allow" and norm.rule not in self.allows[action]:
+            self.allows[action].append(norm.rule)
+            self.info[action][norm.rule] = RuleInfo("allow", {"given": norm.text(), "speaker": speaker})
+        added = tuple(r for r in self.rules[action] if r not in before)
+        removed = tuple(r for r in before if r not in self.rules[action])
+        return NormResult(out, added, removed)
+
+    def remove_permission(self, action: str, obj: int | str) -> None:
+        """Forget one permission (the rules stay; posteriors follow)."""
+        name = self.objects[self.obj(obj)].name
+        if name not in self.perms[action]:
+            raise KeyError(f"{action} on {name}")
+        del self.perms[action][name]
+        self._changed()
+
+    def remove_rule(self, action: str, rule: Rule) -> None:
+        """Forget one forbid or allow rule; refused while rules are frozen."""
+        if self.switches.frozen_rules:
+            raise OwnctlError("rules are frozen: rules are not changed (ownctl unfreeze rules)")
+        if rule in self.allows[action]:
+            self.allows[action].remove(rule)
+        elif rule in self.rules[action]:
+            self.rules[action] = tuple(r for r in self.rules[action] if r != rule)
+        else:
+            raise KeyError(rule.text())
+        del self.info[action][rule]
+        self._changed()
+
+    def restore_permission(self, action: str, obj: int | str, given: Given) -> None:
+        """Put back a permission known from before (a stored one): no gate, no induction."""
+        self.perms[action][self.objects[self.obj(obj)].name] = given
+        self._seq = max(self._seq, given.seq)
+        self._changed()
+
+    def restore_rule(self, action: str, rule: Rule, info: RuleInfo) -> None:
+        """Put back a rule known from before, after the action's others (no induction)."""
+        if info.origin not in ORIGINS:
+            raise OwnctlError(f"unknown rule origin {info.origin!r}; valid: {', '.join(ORIGINS)}", ORIGINS)
+        self.info[action][rule] = info
+        if info.origin == "allow":
+            self.allows[action].append(rule)
+        else:
+            self.rules[action] = (*self.rules[action], rule)
+        self._changed()
+
+    def reserve_ranks(self, top: int) -> None:
+        """Let new permissions rank after ``top`` (permissions not held by a partial Mind)."""
+        self._seq = max(self._seq, top)
+
+    def all_rules(self, action: str) -> list[tuple[Rule, RuleInfo]]:
+        """The action's forbid rules then its allow rules, each with where it came from."""
+        return [(r, self.info[action][r]) for r in (*self.rules[action], *self.allows[action])]
+
+    # -- instructions: the world -----------------------------------------------------------------
+    def _grow(self, rows: int = 0, cols: int = 0) -> None:
+        base = self._base_rate()
+        n, m = self.claims.shape
+        if rows:
+            self.claims = np.vstack([self.claims, np.full((rows, m), np.nan)])
+            self.predicted = np.vstack([self.predicted, np.full((rows, m), base)])
+            self.prior_source = np.vstack([self.prior_source, np.full((rows, m), BASE_RATE, dtype=object)])
+        if cols:
+            n = self.claims.shape[0]
+            self.claims = np.hstack([self.claims, np.full((n, cols), np.nan)])
+            self.predicted = np.hstack([self.predicted, np.full((n, cols), base)])
+            self.prior_source = np.hstack([self.prior_source, np.full((n, cols), BASE_RATE, dtype=object)])
+
+    def add_objects(self, specs: Sequence[ObjectSpec]) -> None:
+        """New objects (``last_touch`` as absolute times); every agent's predictions cover them."""
+        taken = set(self.index)
+        for spec in specs:
+            if spec.name in taken:
+                raise DuplicateName(f"object {spec.name!r} already exists; choose another name")
+            taken.add(spec.name)
+        if not specs:
+            return
+        self.objects.extend(specs)
+        self._grow(rows=len(specs))
+        self._reindex()
+        self._stale_agents(self.agents)
+
+    def remove_object(self, obj: int | str) -> None:
+        """Forget an object with its claims and permissions; predictions follow."""
+        i = self.obj(obj)
+        name = self.objects[i].name
+        palette = self.vocab.colors
+        had_claims = [a for j, a in enumerate(self.agents) if not np.isnan(self.claims[i, j])]
+        del self.objects[i]
+        self.claims = np.delete(self.claims, i, axis=0)
+        self.predicted = np.delete(self.predicted, i, axis=0)
+        self.prior_source = np.delete(self.prior_source, i, axis=0)
+        self.claim_info = {k: v for k, v in self.claim_info.items() if k[0] != name}
+        for given in self.perms.values():
+            given.pop(name, None)
+        self._reindex()
+        stale = self.agents if self.vocab.colors != palette else had_claims
+        self._stale_agents(stale)
+
+    def add_agent(self, name: str) -> None:
+        """A new possible owner, with the calibrated base rate as its prior everywhere."""
+        if name in self.agents:
+            raise DuplicateName(f"agent {name!r} already exists; choose another name")
+        self.agents = (*self.agents, name)
+        self._grow(cols=1)
+        self._frame = None
+        self._stale_agents([name])
+
+    def _refuse_named(self, kind: str, pred: str, name: str) -> None:
+        users = [r.text() for a in ACTIONS for r, _ in self.all_rules(a) if _names_rule(r, pred, name)]
+        if users:
+            raise OwnctlError(f"{kind} {name!r} is named by the rules {users}; remove them first "
+                              "(ownctl rules remove ID)")
+
+    def remove_agent(self, name: str) -> None:
+        """Forget an agent and its beliefs; refused while a rule names it."""
+        j = self._column(name)
+        self._refuse_named("agent", "ownedBy", name)
+        self.agents = tuple(a for a in self.agents if a != name)
+        self.claims = np.delete(self.claims, j, axis=1)
+        self.predicted = np.delete(self.predicted, j, axis=1)
+        self.prior_source = np.delete(self.prior_source, j, axis=1)
+        self.claim_info = {k: v for k, v in self.claim_info.items() if k[1] != name}
+        self.objects = [replace(o, last_touch={a: t for a, t in o.last_touch.items() if a != name})
+                        if name in o.last_touch else o for o in self.objects]
+        self._stale.discard(name)
+        self._reindex()
+
+    def add_area(self, area: Area) -> None:
+        """A new named area (rules and examples see it at once)."""
+        if any(a.name == area.name for a in self.areas):
+            raise DuplicateName(f"area {area.name!r} already exists; choose another name")
+        self.areas.append(area)
+        self.areas.sort(key=lambda a: a.name)
+        self._reindex()
+
+    def remove_area(self, name: str) -> None:
+        """Forget an area; refused while a rule names it."""
+        if all(a.name != name for a in self.areas):
+            raise KeyError(name)
+        self._refuse_named("area", "inArea", name)
+        self.areas = [a for a in self.areas if a.name != name]
+        self._reindex()
+
+    # -- instructions: administration ----------------------------------------------------------
+    def reset(self, what: str) -> dict[str, int]:
+        """Forget permissions, rules (forbid and allow), claims, or all three; returns the counts."""
+        if what not in RESETS:
+            raise OwnctlError(f"unknown reset {what!r}; valid: {', '.join(RESETS)}", RESETS)
+        counts: dict[str, int] = {}
+        if what in ("perms", "all"):
+            counts["permissions"] = sum(len(g) for g in self.perms.values())
+            self.perms = {a: {} for a in ACTIONS}
+        if what in ("rules", "all"):
+            counts["rules"] = sum(len(self.rules[a]) + len(self.allows[a]) for a in ACTIONS)
+            self.rules = {a: () for a in ACTIONS}
+            self.allows = {a: [] for a in ACTIONS}
+            self.info = {a: {} for a in ACTIONS}
+        if what in ("claims", "all"):
+            counts["claims"] = int((~np.isnan(self.claims)).sum())
+            self.claims[:] = np.nan
+            self.claim_info.clear()
+            self.predicted[:] = self._base_rate()
+            self.prior_source[:] = BASE_RATE
+            self._stale_agents(self.agents)
+        self._changed()
+        return counts
+
+    def set_switch(self, key: str, on: bool) -> None:
+        """freeze/unfreeze perms|rules, disable/enable inference|prediction (keys of SWITCHES)."""
+        if key not in SWITCHES:
+            raise OwnctlError(f"unknown switch {key!r}; valid: {', '.join(SWITCHES)}", tuple(SWITCHES))
+        attr, when_on = SWITCHES[key]
+        was = getattr(self.switches, attr)
+        setattr(self.switches, attr, on if when_on else not on)
+        if attr == "prediction" and self.switches.prediction and not was:
+            self._stale_agents(self.agents)  # predictions catch up
+        self._changed()
+
+    # -- decisions ---------------------------------------------------------------------------
+    def p_forbidden(self, action: str, own: np.ndarray | None = None) -> np.ndarray:
+        """P(rules forbid ``action``) per object, on the posterior by default."""
+        return p_forbidden(self.rules[action], self.frame(own))
+
+    def permission(self, action: str, obj: int | str) -> Given | None:
+        """The object's permission for ``action``, if any."""
+        return self.perms[action].get(self.objects[self.obj(obj)].name)
+
+    def forbidden(self, action: str, obj: int | str) -> bool:
+        """The decision for one action step: the permission if any, else rules at the threshold."""
+        i = self.obj(obj)
+        given = self.permission(action, i)
+        if given is not None:
+            return bool(given.value >= PERMISSION_CUT)
+        thr = self.settings.threshold_for(action)
+        return bool(p_forbidden(self.rules[action], self.frame().take([i]))[0] >= thr)
+
+    def decide(self, action: str, obj: int | str, steps: Sequence[str]) -> tuple[bool, list[str]]:
+        """Is ``action`` forbidden on the object (any of ``steps`` forbidden), and which steps forbid."""
+        bad = [s for s in steps if self.forbidden(s, obj)]
+        return bool(bad), bad
+
