@@ -36,7 +36,6 @@ NOW = 1000.0
 
 
 @pytest.fixture
-
 def ctx(tmp_path: Path) -> Iterator[AppContext]:
     ctx = AppContext(str(tmp_path / "s.db"), now=NOW)
     ctx.store(create=True)

@@ -61,3 +61,69 @@ def test_revision_reading_agrees_with_alembic() -> None:
     script = ScriptDirectory(str(migrations_dir()))
     assert known_revisions() == [r.revision for r in reversed(list(script.walk_revisions()))]
     assert head_revision() == script.get_current_head()
+
+
+FIRST_REVISION_DATA = [
+    "INSERT INTO agents (id, name, created) VALUES (1, 'alexis', 1.0), (2, 'xuan', 1.0)",
+    "INSERT INTO areas (id, name, x0, y0, x1, y1) VALUES (1, 'home', 0, 0, 0.5, 0.5)",
+    "INSERT INTO objects (id, name, color, x, y, z, extra, created) VALUES "
+    "(1, 'wallet', 'brown', 0.1, 0.1, 0, '{}', 1.0), (2, 'mug', 'red', 0.8, 0.8, 0, '{}', 1.0)",
+    "INSERT INTO object_categories (object_id, category) VALUES (2, 'kitchen')",
+    "INSERT INTO touches (object_id, agent_id, time) VALUES (1, 1, 50.0)",
+    "INSERT INTO ownership (object_id, agent_id, claim_p, claim_speaker, claim_trust, claim_time, prior_p, "
+    "prior_source, prior_time) VALUES (1, 1, 1.0, 'alexis', 1.0, 60.0, 0.7, 'prediction', 60.0), "
+    "(1, 2, NULL, NULL, NULL, NULL, 0.25, 'base-rate', 60.0), (2, 1, NULL, NULL, NULL, NULL, 0.3, "
+    "'prediction', 60.0), (2, 2, NULL, NULL, NULL, NULL, 0.25, 'base-rate', 60.0)",
+    "INSERT INTO permissions (id, action, object_id, value, speaker, time) VALUES "
+    "(1, 'trash', 1, 1.0, 'alexis', 70.0), (2, 'trash', 2, 0.0, NULL, 71.0)",
+    "INSERT INTO rules (id, action, text, origin, provenance, created) VALUES "
+    "(1, 'trash', 'forbid trash if ownedBy any', 'given', '{\"speaker\": \"alexis\"}', 72.0)",
+    "INSERT INTO settings (key, value) VALUES ('allow.trash', '[\"allow trash if isColored red\"]'), "
+    "('threshold', '0.4')",
+    "INSERT INTO context (id, speaker, target_id, last_refusal) VALUES "
+    "(1, 'alexis', 1, '{\"action\": \"trash\", \"refusal\": {\"action\": \"trash\", \"object\": \"wallet\"}}')",
+    "INSERT INTO events (id, time, actor, interface, command, payload) VALUES "
+    "(1, 80.0, 'alexis', 'cli', 'claim wallet alexis', '{}')",
+]
+
+
+def test_a_store_with_data_at_the_first_revision_upgrades_to_the_head_losing_nothing(tmp_path: Path) -> None:
+    from ownctl.app import query
+    from ownctl.app.context import AppContext
+
+    path = tmp_path / "old.db"
+    cfg = alembic_config(url=f"sqlite:///{path}")
+    first = known_revisions()[0]
+    command.upgrade(cfg, first)
+    with sqlite3.connect(path) as conn:
+        for statement in FIRST_REVISION_DATA:
+            conn.execute(statement)
+    conn.close()
+    command.upgrade(cfg, "head")
+    ctx = AppContext(str(path), now=100.0)
+    try:
+        owners = {o["agent"]: o for o in query.owners(ctx, "wallet")["owners"]}
+        assert owners["alexis"]["claim"] == 1.0 and owners["alexis"]["prior"] == 0.7
+        assert [(p["action"], p["object"], p["value"]) for p in query.list_permissions(ctx)] == [
+            ("trash", "wallet", 1.0), ("trash", "mug", 0.0)]
+        rules = [(r["text"], r["origin"]) for r in query.list_rules(ctx)]
+        assert rules == [("forbid trash if ownedBy any", "given"), ("allow trash if isColored red", "allow")]
+        assert query.events(ctx)[0]["command"] == "claim wallet alexis"
+        with ctx.read() as tx:
+            talk = tx.conversation()
+            assert (talk.speaker, talk.target, talk.action) == ("alexis", "wallet", "trash")
+            assert talk.refusal == {"action": "trash", "object": "wallet"}
+            assert tx.settings() == {"threshold": 0.4}
+            seen = {p.object_id: p.seen for p in tx.permission_rows()}
+            assert seen[1] == {"color": "brown", "position": [0.1, 0.1, 0.0], "categories": [],
+                               "touches": {"alexis": 50.0}}
+            assert seen[2]["categories"] == ["kitchen"]
+    finally:
+        ctx.close()
+    # and back: the first revision's forms return
+    command.downgrade(cfg, first)
+    with sqlite3.connect(path) as conn:
+        assert conn.execute("SELECT value FROM settings WHERE key = 'allow.trash'").fetchone() == (
+            '["allow trash if isColored red"]',)
+        assert conn.execute("SELECT count(*) FROM rules").fetchone() == (1,)
+    conn.close()
