@@ -133,24 +133,43 @@ class Interrupting:
         return self.base.react(attempt, mind)
 
 
+def _teach_claim(mind: Mind, ins: Any, speaker: str) -> bool:
+    mind.claim(ins.object, ins.agent, ins.p, negated=ins.negated, exclusive=ins.exclusive, speaker=speaker)
+    return False
+
+
+def _teach_permission(mind: Mind, ins: Any, speaker: str) -> bool:
+    mind.permit(ins.action, ins.object, 1.0 if ins.forbid else 0.0, speaker)
+    return False
+
+
+def _teach_norm(mind: Mind, ins: Any, speaker: str) -> bool:
+    mind.instruct(ins.norm, speaker)
+    return False
+
+
+def _stop(mind: Mind, ins: Any, speaker: str) -> bool:
+    return True
+
+
+def teaching() -> dict[type, Callable[[Mind, Any, str], bool]]:
+    """Which Mind instruction an understood instruction becomes during a run (True: stop the
+    attempt). Questions and introductions are not taught during a run."""
+    from ownctl.language import Claim, NormInstruction, Permission, Skip
+
+    return {Claim: _teach_claim, Permission: _teach_permission, NormInstruction: _teach_norm, Skip: _stop}
+
+
 def teach_utterance(mind: Mind, hit: Interrupt, attempt: Attempt) -> bool:
     """Apply an utterance's instructions to the Mind; True if it asks the robot to stop."""
-    from ownctl.language import Claim, Context, NormInstruction, Permission, Skip, teaching_order, understand
+    from ownctl.language import Context, teaching_order, understand
 
     ctx = Context(speaker=hit.speaker, about=hit.object, action=attempt.task.action,
                   agents=frozenset(mind.agents), objects=frozenset(o.name for o in mind.objects))
-    stop = False
-    for _, ins in teaching_order(understand(hit.utterance, ctx).instructions):
-        if isinstance(ins, Claim):
-            mind.claim(ins.object, ins.agent, ins.p, negated=ins.negated, exclusive=ins.exclusive,
-                       speaker=hit.speaker)
-        elif isinstance(ins, Permission):
-            mind.permit(ins.action, ins.object, 1.0 if ins.forbid else 0.0, hit.speaker)
-        elif isinstance(ins, NormInstruction):
-            mind.instruct(ins.norm, hit.speaker)
-        elif isinstance(ins, Skip):
-            stop = True
-    return stop
+    table = teaching()
+    stops = [table[type(ins)](mind, ins, hit.speaker)
+             for _, ins in teaching_order(understand(hit.utterance, ctx).instructions) if type(ins) in table]
+    return any(stops)
 
 
 def _ensure_world(ctx: AppContext, seed: int, layout_seed: int | None) -> bool:

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ownctl.app.context import AppContext
+from ownctl.errors import OwnctlError
 from ownctl.language import (
     AskOwner,
     AskPermitted,
@@ -29,6 +30,7 @@ from ownctl.language import (
     Introduce,
     NormInstruction,
     Permission,
+    Request,
     RunTask,
     Skip,
     Understanding,
@@ -123,8 +125,12 @@ class _Turn:
         self.tasks: list[RunTask] = []
 
     def apply(self, ins: Instruction) -> dict[str, Any]:
-        handler: Callable[[Any], tuple[str, dict[str, Any]]] = getattr(self, "_" + type(ins).__name__.lower())
-        message, data = handler(ins)
+        """Carry out one understood instruction by its use case (see :data:`USE_CASES`)."""
+        use_case = USE_CASES.get(type(ins))
+        if use_case is None:
+            raise OwnctlError(f"no use case carries out {type(ins).__name__} instructions; known: "
+                              f"{', '.join(sorted(t.__name__ for t in USE_CASES))}")
+        message, data = use_case(self, ins)
         return {"instruction": ins.text(), "message": message, "data": data}
 
     def _claim(self, ins: Claim) -> tuple[str, dict[str, Any]]:
@@ -185,7 +191,6 @@ class _Turn:
         self.report.answers.append(answer)
         return answer, result.data
 
-    _request = _askpermitted
 
     def _askwhy(self, ins: AskWhy) -> tuple[str, dict[str, Any]]:
         data = _why(self.ctx, ins)
@@ -195,6 +200,21 @@ class _Turn:
     def _runtask(self, ins: RunTask) -> tuple[str, dict[str, Any]]:
         self.tasks.append(ins)
         return f"{ins.task} starts once this utterance is stored", {"task": ins.task}  # then: its report
+
+
+#: Which use case carries out each kind of understood instruction (a new kind plugs in here).
+USE_CASES: dict[type, Callable[[_Turn, Any], tuple[str, dict[str, Any]]]] = {
+    Claim: _Turn._claim,
+    Permission: _Turn._permission,
+    NormInstruction: _Turn._norminstruction,
+    Introduce: _Turn._introduce,
+    Skip: _Turn._skip,
+    AskOwner: _Turn._askowner,
+    AskPermitted: _Turn._askpermitted,
+    Request: _Turn._askpermitted,
+    AskWhy: _Turn._askwhy,
+    RunTask: _Turn._runtask,
+}
 
 
 def run_function() -> Callable[..., Any]:
