@@ -55,7 +55,7 @@ from ownctl.world.model import World, make_frame  # noqa: E402
 
 # (objects, op) -> target ms (median), from the project brief
 TARGETS = {(20, "permission"): 5.0, (20, "claim"): 5.0, (1000, "permission"): 10.0, (1000, "claim"): 100.0}
-# the original research code (reference section 9.4 measurements, no database)
+# the original research code's own timings (no database)
 ORIGINAL = {(20, "permission"): 0.66, (20, "claim"): 13.0, (1000, "permission"): 6.8, (1000, "claim"): 7300.0}
 TEN_AGENTS = tuple(f"agent{i}" for i in range(1, 11))
 START = 1_000_000.0  # the store clock at the start (seconds)

@@ -10,7 +10,7 @@ from dataclasses import dataclass, field
 
 @dataclass(frozen=True)
 class LearnConfig:
-    """Rule induction settings (paper section "Learning ownership"; reference section 3.1)."""
+    """Rule induction settings (paper section "Learning ownership"; docs/architecture.md, section 4)."""
 
     accuracy_gate: float = 0.9  # induce only when soft accuracy on stored permissions drops below this
     beam: int = 3  # beam width of rule_search
@@ -23,7 +23,7 @@ class LearnConfig:
 
 @dataclass(frozen=True)
 class PredictConfig:
-    """Per-agent kernel logistic regression on percepts (DESIGN section 5).
+    """Per-agent kernel logistic regression on percepts (docs/architecture.md, section 5).
 
     Position and log-recency are standardised over the known objects before weighting, so the
     weights and the kernel width are in units of their spread (tuned on Table 2, see
@@ -42,7 +42,7 @@ class PredictConfig:
 
 @dataclass(frozen=True)
 class InferConfig:
-    """Rule-based Bayesian inference of ownership (DESIGN section 3)."""
+    """Rule-based Bayesian inference of ownership (docs/architecture.md, section 3)."""
 
     noise: float = 0.05  # probability an instructor's permission is not explained by the rules
 

@@ -34,7 +34,7 @@ class UnknownName(OwnctlError):
 
 
 class BadName(OwnctlError):
-    """A name that breaks the naming rule (DESIGN section 2) or is reserved."""
+    """A name that breaks the naming rule (docs/architecture.md, section 2) or is reserved."""
 
 
 class DuplicateName(OwnctlError):

@@ -1,4 +1,4 @@
-"""The layers of DESIGN section 1 hold: import-linter's contracts pass."""
+"""The layers of docs/architecture.md, section 1 hold: import-linter's contracts pass."""
 
 import subprocess
 import sys

@@ -30,7 +30,7 @@ from ownctl.mind import Mind
 
 @dataclass(frozen=True)
 class CheckReport:
-    """The answer of ``check``; ``data`` has DESIGN section 7's shape, ``reason`` is for people."""
+    """The answer of ``check``; ``data`` has architecture section 7's shape, ``reason`` is for people."""
 
     data: dict[str, Any]
     reason: str

@@ -1,7 +1,7 @@
 """Use case: run one of the paper's experiments in memory and write its optional CSV and plot.
 
 Experiments never touch the store: trials run on the core (:mod:`ownctl.experiment`). This module
-reads the world file (TOML, DESIGN section 11) into a picklable world factory, checks the options,
+reads the world file (TOML, architecture section 11) into a picklable world factory, checks the options,
 runs the trials and writes the ``--csv`` and ``--plot`` files.
 """
 

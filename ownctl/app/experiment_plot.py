@@ -25,7 +25,10 @@ def _panels(result: ExperimentResult) -> list[Panel]:
     ]
     if result.experiment.name == "task":
         panels.insert(0, ("mistakes", lambda c: c.counts.get("mistakes"), lambda p: p.get("mistakes")))
-        own = lambda p, m: (p.get("ownership") or {}).get(m)  # noqa: E731
+
+        def own(p: Mapping[str, Any], m: str) -> Any:
+            return (p.get("ownership") or {}).get(m)
+
         panels += [
             ("ownership accuracy", lambda c: c.groups["ownership"].average["accuracy"],
              lambda p: own(p, "accuracy")),

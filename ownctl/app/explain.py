@@ -15,10 +15,13 @@ Explaining is a question about a decision, not a decision: the conversation is l
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ownctl.app.context import AppContext
 from ownctl.logic.rules import ANY, Literal, parse_rule
+
+if TYPE_CHECKING:
+    from ownctl.store.repo import Tx
 
 SHOWN_AGENTS = 4  # at most this many atoms of an "ownedBy any" rule are spelled out
 
@@ -151,7 +154,7 @@ def _relevant_agents(data: dict[str, Any], agents: list[str]) -> list[str]:
     return [a for a in agents if a in named]
 
 
-def _atoms(tx: Any, row: Any) -> list[dict[str, Any]]:
+def _atoms(tx: Tx, row: Any) -> list[dict[str, Any]]:
     """Every agent's ownership atom for the object: the decision belief and where it comes from."""
     from ownctl.app.beliefs import decision_belief
 
@@ -173,7 +176,7 @@ def _atoms(tx: Any, row: Any) -> list[dict[str, Any]]:
     return atoms
 
 
-def _steps(tx: Any, row: Any, steps: list[dict[str, Any]], own: dict[str, float]) -> list[dict[str, Any]]:
+def _steps(tx: Tx, row: Any, steps: list[dict[str, Any]], own: dict[str, float]) -> list[dict[str, Any]]:
     """The check's steps with each rule's origin and literal values, and each permission's row."""
     categories = tx.categories([row.id]).get(row.id, set())
     areas = {a.name: a for a in tx.areas()}

@@ -14,7 +14,7 @@ inference), save what changed (:mod:`ownctl.app.mindstore`).
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ownctl.app.context import AppContext, Done
 from ownctl.app.mindstore import changing
@@ -22,6 +22,9 @@ from ownctl.app.settings import probability
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
 from ownctl.logic.vocab import action as check_action
+
+if TYPE_CHECKING:
+    from ownctl.store.repo import Tx
 
 
 def add_claim(
@@ -84,7 +87,7 @@ def add_permission(ctx: AppContext, action: str, obj: str, value: float, speaker
     )
 
 
-def check_references(tx: Any, rule: Rule) -> None:
+def check_references(tx: Tx, rule: Rule) -> None:
     """Every agent and area a rule names must exist (``any`` is always fine); colours are free."""
     for lit in rule.literals:
         if lit.arg == ANY:

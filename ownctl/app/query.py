@@ -5,13 +5,16 @@ Beliefs shown as ``p`` are the decision beliefs of :func:`ownctl.app.beliefs.dec
 
 from __future__ import annotations
 
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ownctl.app.beliefs import decision_belief
 from ownctl.app.context import AppContext, Done
 from ownctl.app.mindstore import changing, load, rule_of
 from ownctl.app.settings import probability
 from ownctl.errors import OwnctlError
+
+if TYPE_CHECKING:
+    from ownctl.store.repo import Tx
 
 
 def owners(ctx: AppContext, obj: str) -> dict[str, Any]:
@@ -21,7 +24,7 @@ def owners(ctx: AppContext, obj: str) -> dict[str, Any]:
         return {"object": obj, "owners": owner_rows(tx, tx.object(obj).id)}
 
 
-def owner_rows(tx: Any, object_id: int) -> list[dict[str, Any]]:
+def owner_rows(tx: Tx, object_id: int) -> list[dict[str, Any]]:
     """Every agent's beliefs about one object, likeliest owner first (inside the caller's transaction)."""
     names = {a.id: a.name for a in tx.agents()}
     out: list[dict[str, Any]] = []

@@ -3,7 +3,7 @@
 The robot's beliefs are loaded from the store into the in-memory Mind the experiments use, the
 shared task loop (:func:`ownctl.experiment.task.run_task`) visits every object, and after every
 object what the robot learned (permissions, claims, rules, beliefs) and where objects ended up are
-written back, each object's attempt in its own transaction (DESIGN section 9). A store with no
+written back, each object's attempt in its own transaction (docs/architecture.md, section 9). A store with no
 objects first receives the paper's blocks world with its ground truth, so the command works on a
 fresh machine.
 
@@ -71,7 +71,7 @@ class RunReport:
         return not self.failed_steps
 
     def as_json(self) -> dict[str, Any]:
-        """DESIGN section 7's ``run`` shape plus details."""
+        """architecture section 7's ``run`` shape plus details."""
         rtf = self.sim_seconds / self.wall_seconds if self.wall_seconds > 0 else 0.0
         return {**self.report.as_dict(), "sim_seconds": self.sim_seconds, "wall_seconds": self.wall_seconds,
                 "real_time_factor": rtf, "failed_steps": list(self.failed_steps),

@@ -1,6 +1,6 @@
 """``scenario play FILE``: load a scenario's world into a store, play its steps, check its expectations.
 
-A scenario (DESIGN section 11; parsed by :mod:`ownctl.world.scenario`) is validated whole before
+A scenario (architecture section 11; parsed by :mod:`ownctl.world.scenario`) is validated whole before
 any store is touched: a malformed file is an error (exit 1) that writes nothing. Playing then
 
 1. loads the world with its ground truth into the store (a temporary one unless ``db`` is given),

@@ -10,7 +10,7 @@ import typer
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table
 
 world = typer.Typer(
-    help="Load and export whole worlds (TOML files of DESIGN section 11).", no_args_is_help=True
+    help="Load and export whole worlds (TOML files of architecture section 11).", no_args_is_help=True
 )
 agent = typer.Typer(help="Agents: the possible owners.", no_args_is_help=True)
 obj = typer.Typer(

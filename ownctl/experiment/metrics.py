@@ -1,4 +1,4 @@
-"""The paper's metrics, exactly as its evaluation code defined them (reference section 7.2).
+"""The paper's metrics, exactly as its evaluation code defined them (docs/architecture.md, section 8).
 
 Positive class = "forbidden" (rules) or "owned" (ownership). Per-trial values are averaged over
 trials and then over actions or agents (a macro-average), like the paper.
@@ -54,6 +54,6 @@ def ci95(values: np.ndarray) -> float:
     n = len(values)
     if n < 2:
         return 0.0
-    from scipy.stats import t as student_t  # type: ignore[import-untyped]
+    from scipy.stats import t as student_t
 
     return float(student_t.ppf(0.975, n - 1) * values.std(ddof=1) / np.sqrt(n))

@@ -1,4 +1,4 @@
-"""Table 1: learning norms from object-specific permissions (reference section 7.3).
+"""Table 1: learning norms from object-specific permissions (docs/architecture.md, section 8).
 
 Each trial draws a new world, gives ownership claims for every object (exact, or noisy: each
 agent's label is 0.6 if it owns the object else 0.4, plus uniform noise of +-0.2), then permissions

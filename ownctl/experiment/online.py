@@ -1,4 +1,4 @@
-"""Table 3: task-based online evaluation (reference section 7.5).
+"""Table 3: task-based online evaluation (docs/architecture.md, section 8).
 
 Each trial draws a new world and runs ``collectAll`` or ``trashAll`` with nothing known up front
 (no claims, permissions or rules), inference and prediction on, a kinematic executor and the oracle
@@ -18,7 +18,8 @@ from ownctl.experiment.kinematic import KinematicExecutor
 from ownctl.experiment.norms import WorldFactory
 from ownctl.experiment.oracle import OracleInstructor
 from ownctl.experiment.result import TrialResult
-from ownctl.experiment.task import TaskReport, run_task
+from ownctl.experiment.task import run_task
+from ownctl.experiment.task_report import TaskReport
 from ownctl.mind import Mind, Switches
 
 

@@ -1,4 +1,4 @@
-"""Table 2: ownership prediction and inference (reference section 7.4).
+"""Table 2: ownership prediction and inference (docs/architecture.md, section 8).
 
 Each trial draws a new world and picks half of the objects at random. Those objects get, one at a
 time, exact ownership claims for every agent and then the true permissions of every action that has

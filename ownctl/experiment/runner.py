@@ -44,7 +44,7 @@ class ExperimentResult:
     extra: dict[str, Any] = field(default_factory=dict)
 
     def as_dict(self) -> dict[str, Any]:
-        """The JSON document (DESIGN section 7 shape, plus groups, counts and settings)."""
+        """The JSON document (docs/architecture.md, section 7 shape, plus groups, counts and settings)."""
         exp = self.experiment
         return {
             "experiment": exp.name,

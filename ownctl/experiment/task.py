@@ -29,7 +29,7 @@ from ownctl.logic.vocab import object_steps
 from ownctl.mind import Mind
 from ownctl.world.model import Area, Position, World
 
-MOVE_TOLERANCE = 0.01  # metres: a smaller displacement is not a move (DESIGN 11, "left OBJ")
+MOVE_TOLERANCE = 0.01  # metres: a smaller displacement is not a move (architecture section 11, "left OBJ")
 
 
 @dataclass(frozen=True)

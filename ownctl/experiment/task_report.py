@@ -1,7 +1,7 @@
 """What a task run reports: one record per object and the learned beliefs' scores (reference 7.5).
 
 :class:`TaskReport` is what :func:`ownctl.experiment.task.run_task` returns, for the in-memory
-Table 3 and the MuJoCo runner alike; ``as_dict`` is the ``run`` JSON shape of DESIGN section 7.
+Table 3 and the MuJoCo runner alike; ``as_dict`` is the ``run`` JSON shape of docs/architecture.md, section 7.
 """
 
 from __future__ import annotations
@@ -82,7 +82,7 @@ class TaskReport:
         return _mean(list(self.ownership.values()))
 
     def as_dict(self) -> dict[str, Any]:
-        """The ``run`` JSON shape of DESIGN section 7 (a runner adds its sim and wall seconds)."""
+        """The ``run`` JSON shape of architecture section 7 (a runner adds its sim and wall seconds)."""
         rule, every, own = self.rule_average(), self.rule_average(list(self.rules)), self.ownership_average()
         return {
             "task": self.task,

@@ -53,4 +53,5 @@ class TrueNorms:
 
     def owner_row(self, i: int) -> np.ndarray:
         """True ownership of object ``i`` per agent (world agent order)."""
-        return self.ownership[i]
+        row: np.ndarray = self.ownership[i]
+        return row

@@ -14,7 +14,7 @@ from ownctl.errors import BadValue
 from ownctl.logic.rules import Norm
 from ownctl.logic.vocab import action as lookup_action
 
-#: The tasks a :class:`RunTask` may name (DESIGN section 7, ``run``).
+#: The tasks a :class:`RunTask` may name (docs/architecture.md, section 7, ``run``).
 TASKS = ("trashAll", "collectAll")
 
 #: How the robot speaks of its object actions in replies.

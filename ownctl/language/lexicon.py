@@ -16,7 +16,7 @@ import re
 ROBOT_NAMES = ("baxter", "robot")
 ROBOT = "Baxter"
 
-#: Action phrase -> action (DESIGN section 2). Longest phrases are tried first.
+#: Action phrase -> action (docs/architecture.md, section 2). Longest phrases are tried first.
 ACTION_PHRASES: dict[str, str] = {
     "throw away": "trash", "throw out": "trash", "toss out": "trash", "toss away": "trash",
     "toss": "trash", "chuck out": "trash", "chuck away": "trash", "chuck": "trash",

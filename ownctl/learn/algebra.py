@@ -1,6 +1,6 @@
 """Set algebra on rules: refinement, subtraction (``rule_diff``) and merging (``merge_rule``).
 
-These are the paper's building blocks (reference section 2.4 and 3.6), made deterministic: every
+These are the paper's building blocks, made deterministic: every
 iteration is over canonically ordered literals, never over hash order.
 """
 

@@ -1,4 +1,4 @@
-"""The naming rule for agents, objects, areas, colours and categories (DESIGN section 2)."""
+"""The naming rule for agents, objects, areas, colours and categories (docs/architecture.md, section 2)."""
 
 from __future__ import annotations
 

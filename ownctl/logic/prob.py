@@ -5,7 +5,7 @@ Bernoulli variables; the probability that an action is forbidden is the total we
 in which at least one rule's conjunction holds. Only agents a rule set names matter one by one; all
 other agents fold into one "owned by some other agent" atom, whose probability is their noisy-or.
 So a rule set naming k agents and using ``any`` costs 2^(k+1) worlds per object, vectorised over
-objects (DESIGN section 3).
+objects (docs/architecture.md, section 3).
 """
 
 from __future__ import annotations
@@ -56,7 +56,8 @@ def other_probability(frame: Frame, named: Iterable[str]) -> np.ndarray:
     keep = [j for j, a in enumerate(frame.agents) if a not in named]
     if not keep:
         return np.zeros(frame.n)
-    return 1.0 - np.prod(1.0 - frame.own[:, keep], axis=1)
+    out: np.ndarray = 1.0 - np.prod(1.0 - frame.own[:, keep], axis=1)
+    return out
 
 
 def enumerate_worlds(frame: Frame, named: Sequence[str], with_other: bool) -> Worlds:
@@ -85,7 +86,8 @@ def atom_truth(lit: Literal, frame: Frame, worlds: Worlds) -> np.ndarray:
         return frame.crisp(lit)[None, :]
     width = len(worlds.bits)
     if lit.arg == ANY:
-        return worlds.bits.any(axis=1)[:, None] if worlds.atoms else np.zeros((width, 1), dtype=bool)
+        some: np.ndarray = np.asarray(worlds.bits.any(axis=1))
+        return some[:, None] if worlds.atoms else np.zeros((width, 1), dtype=bool)
     if lit.arg in worlds.atoms:
         return worlds.bits[:, worlds.atoms.index(lit.arg)][:, None]
     return np.zeros((width, 1), dtype=bool)
@@ -114,4 +116,5 @@ def p_forbidden(rules: Sequence[Rule], frame: Frame) -> np.ndarray:
     named, uses_any = relevant_atoms([rules])
     worlds = enumerate_worlds(frame, named, uses_any)
     truth = rule_truth(rules, frame, worlds)
-    return np.clip((worlds.weights * truth).sum(axis=0), 0.0, 1.0)
+    out: np.ndarray = np.clip((worlds.weights * truth).sum(axis=0), 0.0, 1.0)
+    return out

@@ -1,4 +1,4 @@
-"""Literals, rules and norms, with canonical printing and parsing (DESIGN section 2).
+"""Literals, rules and norms, with canonical printing and parsing (docs/architecture.md, section 2).
 
 A :class:`Rule` is a conjunction of literals about its target object; a rule set (a tuple of rules
 for one action) is their disjunction. A :class:`Norm` is a rule with a sign: ``forbid`` rules are
@@ -63,7 +63,8 @@ class Literal:
             neg = Literal(self.pred, self.arg, not self.negated)
             object.__setattr__(self, "_neg", neg)
             object.__setattr__(neg, "_neg", self)
-        return neg  # type: ignore[no-any-return]
+        assert isinstance(neg, Literal)
+        return neg
 
     def sort_key(self) -> tuple[int, bool, str, bool]:
         """Canonical order: vocabulary order, ``any`` first, then argument, positive first."""

@@ -1,4 +1,4 @@
-"""Actions, their prerequisites, and the predicate registry (DESIGN section 2).
+"""Actions, their prerequisites, and the predicate registry (docs/architecture.md, section 2).
 
 The registry order fixes the canonical literal order: ``ownedBy``, ``isColored``, ``inArea``,
 ``inCategory``. Adding a predicate is adding one :class:`Predicate` entry.

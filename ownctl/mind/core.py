@@ -357,7 +357,8 @@ class Mind:
         if color is not KEEP:
             spec = replace(spec, color=color)
         if position is not KEEP:
-            spec = replace(spec, position=None if position is None else tuple(float(v) for v in position))
+            x, y, z = (float(v) for v in position) if position is not None else (0.0, 0.0, 0.0)
+            spec = replace(spec, position=None if position is None else (x, y, z))
         if categories is not KEEP:
             spec = replace(spec, categories=frozenset(categories))
         if spec == self.objects[i]:

@@ -1,8 +1,8 @@
-"""Percept features for ownership prediction (DESIGN section 5).
+"""Percept features for ownership prediction (docs/architecture.md, section 5).
 
 Per agent, an object is described by its position, its colour and how recently that agent touched
 it, on a log scale: ``log1p(age in seconds)``. The original system used raw seconds, which makes
-every rarely-touched object look unlike every other (reference section 9.3); interaction times are
+every rarely-touched object look unlike every other (a flaw of the original system); interaction times are
 exponential, so their logarithm is the natural scale.
 
 Position and log-recency are standardised by their spread over the rows given (pass every object

@@ -36,7 +36,8 @@ def _sigmoid(z: np.ndarray) -> np.ndarray:
 def rbf_kernel(A: np.ndarray, B: np.ndarray, gamma: float) -> np.ndarray:
     """exp(-gamma |a - b|^2) for every pair of rows (len(A), len(B))."""
     d2 = ((A[:, None, :] - B[None, :, :]) ** 2).sum(axis=-1)
-    return np.exp(-gamma * d2)
+    out: np.ndarray = np.exp(-gamma * d2)
+    return out
 
 
 def _off_half(value: float) -> float:
@@ -83,7 +84,8 @@ class KernelOwnershipModel:
         """The logit f(x) for each row of ``X`` (n,)."""
         X = np.asarray(X, dtype=float)
         design = np.hstack([rbf_kernel(X, self.support_, self.cfg.gamma), X, np.ones((len(X), 1))])
-        return design @ self.coef_
+        out: np.ndarray = design @ self.coef_
+        return out
 
     def predict_proba(self, X: np.ndarray) -> np.ndarray:
         """P(owned) for each row of ``X`` (n,), never exactly 0.5."""

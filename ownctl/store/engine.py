@@ -1,6 +1,6 @@
 """Opening a store: where it is, whether it is ours, its schema revision, and transactions.
 
-Rules (DESIGN section 6):
+Rules (docs/architecture.md, section 6):
 
 - the default store (``user_data_dir("ownctl")/ownctl.db``) is created on first use; a store named
   explicitly that does not exist is created only when ``create`` is true (``ownctl init``);

@@ -1,4 +1,4 @@
-"""The store's tables as SQLAlchemy 2 typed ORM models (DESIGN section 6).
+"""The store's tables as SQLAlchemy 2 typed ORM models (docs/architecture.md, section 6).
 
 The schema is created and changed only by the Alembic revisions in ``migrations/versions/``; these
 models describe the head revision (a test compares them). Times are absolute seconds on the store's

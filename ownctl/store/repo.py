@@ -10,9 +10,9 @@ from __future__ import annotations
 from collections import Counter
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, cast
 
-from sqlalchemy import bindparam, delete, func, insert, select, update
+from sqlalchemy import Table, bindparam, delete, func, insert, select, update
 from sqlalchemy.orm import Session
 
 from ownctl.errors import DuplicateName, UnknownName
@@ -36,7 +36,12 @@ from ownctl.store.models import (
 BELIEF_KINDS = ("claim", "prior", "posterior")
 CHUNK = 900  # ids per IN (...) clause, below SQLite's default limit on bound parameters
 
-KEEP: Any = object()  # "leave this part of the conversation as it is" (Tx.converse)
+KEEP: Any = object()
+
+
+def _table(model: type[Base]) -> Table:
+    """The Core table of an ORM model (for bulk statements)."""
+    return cast(Table, model.__table__)  # "leave this part of the conversation as it is" (Tx.converse)
 
 
 @dataclass(frozen=True)
@@ -133,8 +138,8 @@ class Tx:
         ids = list(object_ids)
         for start in range(0, len(ids), CHUNK):
             chunk = ids[start : start + CHUNK]
-            for model in (Ownership, Touch, Category, Permission, TruthOwner):
-                self.session.execute(delete(model).where(model.object_id.in_(chunk)))
+            for table in (Ownership, Touch, Category, Permission, TruthOwner):
+                self.session.execute(delete(table).where(table.object_id.in_(chunk)))
             self.session.execute(update(Conversation).where(Conversation.target_id.in_(chunk))
                                  .values(target_id=None))
             self.session.execute(delete(Object).where(Object.id.in_(chunk)))
@@ -246,7 +251,7 @@ class Tx:
 
         The fast path for reading many beliefs at once: optionally only ``object_ids`` and/or one agent.
         """
-        query = select(*Ownership.__table__.columns)
+        query = select(*_table(Ownership).columns)
         if agent_id is not None:
             query = query.where(Ownership.agent_id == agent_id)
         if object_ids is None:
@@ -288,7 +293,7 @@ class Tx:
         for row in rows:
             columns = tuple(sorted(k for k in row if k not in ("object_id", "agent_id")))
             groups.setdefault(columns, []).append(row)
-        table = Ownership.__table__
+        table = _table(Ownership)
         for columns, group in groups.items():
             statement = (
                 update(table)
@@ -322,19 +327,19 @@ class Tx:
             return {}
         keys = ("name", "color", "x", "y", "z")
         rows = [{**{k: s.get(k) for k in keys}, "extra": s.get("extra") or {}, "created": now} for s in specs]
-        self.session.connection().execute(insert(Object.__table__), rows)
+        self.session.connection().execute(insert(_table(Object)), rows)
         ids = self._object_ids(names)
         agents = list(self.session.scalars(select(Agent.id)))
         if agents:
             beliefs = [{"object_id": ids[n], "agent_id": a} for n in names for a in agents]
-            self.session.connection().execute(insert(Ownership.__table__), beliefs)
+            self.session.connection().execute(insert(_table(Ownership)), beliefs)
         return ids
 
     def add_touches(self, rows: Sequence[tuple[int, int, float]]) -> None:
         """Many (object id, agent id, time) interactions of objects that have none yet, at once."""
         if rows:
             self.session.connection().execute(
-                insert(Touch.__table__),
+                insert(_table(Touch)),
                 [{"object_id": o, "agent_id": a, "time": t} for o, a, t in rows],
             )
 
@@ -342,7 +347,7 @@ class Tx:
         """Many (object id, category) memberships of new objects, at once."""
         if rows:
             self.session.connection().execute(
-                insert(Category.__table__),
+                insert(_table(Category)),
                 [{"object_id": o, "category": c} for o, c in sorted(set(rows))],
             )
 
@@ -395,7 +400,7 @@ class Tx:
 
     def permission_rows(self, object_ids: Sequence[int] | None = None) -> list[Any]:
         """Permissions as plain rows with every column (of every object, or only of ``object_ids``)."""
-        query = select(*Permission.__table__.columns).order_by(Permission.id)
+        query = select(*_table(Permission).columns).order_by(Permission.id)
         if object_ids is None:
             return list(self.session.execute(query))
         out: list[Any] = []
@@ -454,7 +459,7 @@ class Tx:
         """Make ``rules`` (text, origin, provenance), in this order, the rules of ``action``; kept
         rules keep their ids and creation times."""
         wanted = {t for t, _, _ in rules}
-        old = {}
+        old: dict[str, RuleRow] = {}
         for row in self.rules(action):
             if row.text not in wanted:
                 self.session.delete(row)
@@ -462,11 +467,12 @@ class Tx:
                 old[row.text] = row
         self.session.flush()
         for rank, (text_, origin, provenance) in enumerate(rules):
-            row = old.get(text_)
-            if row is None:
+            kept = old.get(text_)
+            if kept is None:
                 row = RuleRow(action=action, text=text_, origin=origin, provenance=provenance, created=now)
                 self.session.add(row)
             else:
+                row = kept
                 row.origin, row.provenance = origin, provenance
             row.rank = rank
         self.session.flush()

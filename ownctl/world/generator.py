@@ -1,4 +1,4 @@
-"""The paper's blocks world (reference section 7.1), seeded.
+"""The paper's blocks world (docs/architecture.md, section 8), seeded.
 
 ``k`` agents, each with an angular sector around the home area at the origin; one cluster of
 objects per agent plus an unowned cluster at the origin; object ``i`` goes to cluster ``i mod (k+1)``.

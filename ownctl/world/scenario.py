@@ -1,4 +1,4 @@
-"""Scenario files (DESIGN section 11): the ``[[steps]]`` of a world file, parsed and checked.
+"""Scenario files (docs/architecture.md, section 11): the ``[[steps]]`` of a world file, parsed and checked.
 
 Pure: a parsed TOML dict -> :class:`Scenario` (the world part is :func:`ownctl.world.spec.
 world_from_dict`'s). Each step does one thing -- ``say`` an utterance (``as`` a speaker, ``about``

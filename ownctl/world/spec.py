@@ -1,4 +1,4 @@
-"""World and scenario files (DESIGN section 11): a parsed TOML dict -> :class:`World`, and back.
+"""World and scenario files (architecture section 11): a parsed TOML dict -> :class:`World`, and back.
 
 Pure: the caller reads the file (``source`` only names it in messages). Every key is checked;
 an unknown key is an error naming the file, the key and the valid keys. A ``[generator]`` section is

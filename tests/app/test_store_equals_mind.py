@@ -79,7 +79,8 @@ def template(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 def fresh_mind() -> Mind:
-    mind = Mind(sorted(AGENTS), world_objects(), sorted(AREAS, key=lambda a: a.name), now=START, touch_times=True)
+    areas = sorted(AREAS, key=lambda a: a.name)
+    mind = Mind(sorted(AGENTS), world_objects(), areas, now=START, touch_times=True)
     return mind
 
 
@@ -123,7 +124,8 @@ def apply(db: str, mind: Mind, step: tuple[Any, ...], now: float) -> None:
             obj, action = args
             if obj not in present or mind.permission(action, obj) is None:
                 return
-            (pid,) = [p["id"] for p in query.list_permissions(ctx) if p["object"] == obj and p["action"] == action]
+            (pid,) = [p["id"] for p in query.list_permissions(ctx)
+                      if p["object"] == obj and p["action"] == action]
             query.remove_permission(ctx, pid)
             mind.remove_permission(action, obj)
         elif kind == "remove":

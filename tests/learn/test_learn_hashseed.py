@@ -1,4 +1,4 @@
-"""Determinism under PYTHONHASHSEED (DESIGN section 4: the same inputs give the same rules).
+"""Determinism under PYTHONHASHSEED (docs/architecture.md, section 4: the same inputs give the same rules).
 
 The original system's learned rules depended on Python's set and dict iteration order. Here one
 script runs seeded Table-1-like trials (paper blocks world, permissions for every object and action

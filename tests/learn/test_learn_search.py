@@ -1,4 +1,4 @@
-"""``rule_search``: the beam search from general to specific rules (reference section 3.3).
+"""``rule_search``: the beam search from general to specific rules.
 
 Scorers here are small tables over a rule's literal set, so each test states exactly which rule the
 search must find: the beam keeps a second-best rule that greedy search would drop, the depth bound is

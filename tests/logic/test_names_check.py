@@ -1,4 +1,5 @@
-"""The naming rule (DESIGN section 2): a letter, then letters, digits, '_' or '-'; reserved words refused."""
+"""The naming rule (architecture section 2): a letter, then letters, digits, '_' or '-';
+reserved words refused."""
 
 from __future__ import annotations
 

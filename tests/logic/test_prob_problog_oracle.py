@@ -3,7 +3,7 @@
 Each generated case is a frame (several objects, 2-5 agents, colours, areas, categories) and a rule
 set (1-5 rules, 0-5 literals each) written independently as a ProbLog program: one probabilistic fact
 per object/agent ownership atom, crisp facts for the percepts, one clause per rule, one query per
-object. DESIGN section 3: the two must agree to 1e-9 for every object.
+object. docs/architecture.md, section 3: the two must agree to 1e-9 for every object.
 """
 
 from __future__ import annotations

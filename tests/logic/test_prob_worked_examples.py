@@ -1,4 +1,4 @@
-"""Hand-computed values of p_forbidden (DESIGN section 3)."""
+"""Hand-computed values of p_forbidden (docs/architecture.md, section 3)."""
 
 from __future__ import annotations
 

@@ -1,4 +1,5 @@
-"""Round trips of the norm language: canonical printing parses back to an equal norm (DESIGN section 2)."""
+"""Round trips of the norm language: canonical printing parses back to an equal norm
+(architecture section 2)."""
 
 from __future__ import annotations
 
@@ -8,7 +9,7 @@ from hypothesis import strategies as st
 from ownctl.logic.rules import Literal, Norm, Rule, parse_norm, parse_rule
 from ownctl.logic.vocab import ACTIONS
 
-VOCAB_ORDER = ("ownedBy", "isColored", "inArea", "inCategory")  # DESIGN section 2, written out here
+VOCAB_ORDER = ("ownedBy", "isColored", "inArea", "inCategory")  # architecture section 2, written out here
 ARGS = {
     "ownedBy": ("any", "alexis", "xuan", "agent1", "agent2", "Bob-1", "a_b"),
     "isColored": ("any", "red", "blue", "Green", "dark-red"),

@@ -1,4 +1,4 @@
-"""Percept-based ownership prediction (DESIGN section 5): the estimator contract and its behaviour.
+"""Percept-based ownership prediction (architecture section 5): the estimator contract and its behaviour.
 
 ``KernelOwnershipModel`` follows scikit-learn's conventions (settings in ``__init__``, ``fit`` returns
 self and sets only trailing-underscore attributes), learns from soft targets, falls back to a

@@ -81,7 +81,8 @@ FIRST_REVISION_DATA = [
     "INSERT INTO settings (key, value) VALUES ('allow.trash', '[\"allow trash if isColored red\"]'), "
     "('threshold', '0.4')",
     "INSERT INTO context (id, speaker, target_id, last_refusal) VALUES "
-    "(1, 'alexis', 1, '{\"action\": \"trash\", \"refusal\": {\"action\": \"trash\", \"object\": \"wallet\"}}')",
+    "(1, 'alexis', 1, '{\"action\": \"trash\", "
+    "\"refusal\": {\"action\": \"trash\", \"object\": \"wallet\"}}')",
     "INSERT INTO events (id, time, actor, interface, command, payload) VALUES "
     "(1, 80.0, 'alexis', 'cli', 'claim wallet alexis', '{}')",
 ]
