@@ -162,7 +162,7 @@ def run_size(n: int, repeats: int, warmup: int, folder: str, seed: int, with_pro
     profiled = list(ops) if with_profile == "both" else [slowest] if with_profile == "slowest" else []
     reports = {op: profile(ops[op], max(5, min(20, repeats // 5))) for op in profiled}
     with bench.ctx.read() as tx:
-        rules = [r.text for r in tx.rules()]
+        rules = [r.text for r in tx.knowledge.rules()]
     bench.ctx.close()
     return {"rows": rows, "setup_seconds": setup, "inductions": bench.inductions, "rules": rules,
             "slowest": slowest, "profiles": reports}

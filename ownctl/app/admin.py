@@ -70,7 +70,7 @@ def config_get(ctx: AppContext, key: str | None = None) -> dict[str, Any]:
     if key is not None:
         check_key(key)
     with ctx.read() as tx:
-        values = effective(tx.settings())
+        values = effective(tx.meta.settings())
     if key is None:
         return values
     return {key: values.get(key)}
@@ -82,7 +82,7 @@ def config_set(ctx: AppContext, key: str, text: str) -> Done:
     if key in FLAGS:  # a switch takes effect the same way as disable/enable/freeze/unfreeze
         return set_flag(ctx, key, bool(value))
     with ctx.write({"op": "config.set", "key": key, "value": value}) as tx:
-        tx.set_setting(key, value)
+        tx.meta.set_setting(key, value)
     shown = "its default" if value is None else value
     return Done(f"{key} set to {shown}", {"key": key, "value": value})
 
@@ -107,6 +107,6 @@ def reset(ctx: AppContext, what: str, yes: bool) -> Done:
     with changing(ctx, {"op": "reset", "what": what}) as (tx, mind):
         counts = mind.reset(what)
         if what == "all":
-            tx.clear("context")
+            tx.meta.clear("context")
     listing = ", ".join(f"{n} {k}" for k, n in counts.items())
     return Done(f"reset {what}: forgot {listing}", {"reset": what, **counts})

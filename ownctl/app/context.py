@@ -73,12 +73,12 @@ class AppContext:
         """
         if self._open is not None:
             if payload is not None:
-                self._open.log(self.now, actor or self.actor, self.interface, self.command, payload)
+                self._open.meta.log(self.now, actor or self.actor, self.interface, self.command, payload)
             yield self._open
             return
         with self.store().transaction(write=True) as tx:
             if payload is not None:
-                tx.log(self.now, actor or self.actor, self.interface, self.command, payload)
+                tx.meta.log(self.now, actor or self.actor, self.interface, self.command, payload)
             self._open = tx
             try:
                 yield tx

@@ -92,19 +92,19 @@ def remember(ctx: AppContext, report: CheckReport) -> None:
         turn["refusal"] = {"action": data["action"], "object": data["object"], "steps": steps,
                            "reason": report.reason, "at": ctx.now}
     with ctx.write(None) as tx:
-        tx.converse(**turn)
+        tx.meta.converse(**turn)
 
 
 def check(ctx: AppContext, action: str, obj: str, record: bool = True) -> CheckReport:
     """Decide ``action`` on ``obj``; see the module docstring (``record``: remember it as a turn)."""
     act = check_action(action)
     with ctx.read() as tx:
-        row = tx.object(obj)
+        row = tx.things.object(obj)
         mind = load(tx, ctx.now, only=[obj]).mind
         settings = mind.settings
         beliefs, sources = mind.posterior()[0], belief_sources(mind, 0)
-        permissions = {p.action: p.id for p in tx.permissions(row.id)}
-        rule_ids = {r.text: r.id for r in tx.rules()}
+        permissions = {p.action: p.id for p in tx.knowledge.permissions(row.id)}
+        rule_ids = {r.text: r.id for r in tx.knowledge.rules()}
         steps = []
         for name in act.steps:
             if ACTIONS[name].target != "object" and not mind.rules[name] and name not in permissions:

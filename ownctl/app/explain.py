@@ -158,13 +158,13 @@ def _atoms(tx: Tx, row: Any) -> list[dict[str, Any]]:
     """Every agent's ownership atom for the object: the decision belief and where it comes from."""
     from ownctl.app.beliefs import decision_belief
 
-    agents = {a.id: a.name for a in tx.agents()}
+    agents = {a.id: a.name for a in tx.world.agents()}
     claims: dict[int, int] = {}
-    for b in tx.ownership():
+    for b in tx.beliefs.ownership():
         if b.claim_p is not None:
             claims[b.agent_id] = claims.get(b.agent_id, 0) + 1
     atoms: list[dict[str, Any]] = []
-    for b in tx.ownership(object_id=row.id):
+    for b in tx.beliefs.ownership(object_id=row.id):
         p, source = decision_belief(b)
         atoms.append({
             "agent": agents[b.agent_id], "p": p, "source": source, "because": _belief_origin(b, claims)[0],
@@ -178,10 +178,10 @@ def _atoms(tx: Tx, row: Any) -> list[dict[str, Any]]:
 
 def _steps(tx: Tx, row: Any, steps: list[dict[str, Any]], own: dict[str, float]) -> list[dict[str, Any]]:
     """The check's steps with each rule's origin and literal values, and each permission's row."""
-    categories = tx.categories([row.id]).get(row.id, set())
-    areas = {a.name: a for a in tx.areas()}
-    rule_rows = {r.id: r for r in tx.rules()}
-    perms = {p.action: p for p in tx.permissions(row.id)}
+    categories = tx.things.categories([row.id]).get(row.id, set())
+    areas = {a.name: a for a in tx.world.areas()}
+    rule_rows = {r.id: r for r in tx.knowledge.rules()}
+    perms = {p.action: p for p in tx.knowledge.permissions(row.id)}
     out = []
     for step in steps:
         step = dict(step)
@@ -204,7 +204,7 @@ def last_refusal(ctx: AppContext) -> tuple[str, str]:
     from ownctl.language import MissingContext
 
     with ctx.read() as tx:
-        refusal = tx.conversation().refusal
+        refusal = tx.meta.conversation().refusal
     if not refusal:
         raise MissingContext(
             "why not what? nothing was refused yet; ask about an action "
@@ -224,7 +224,7 @@ def explain(ctx: AppContext, action: str | None = None, obj: str | None = None) 
 
     data = dict(check(ctx, action, obj, record=False).data)
     with ctx.read() as tx:
-        row = tx.object(obj)
+        row = tx.things.object(obj)
         atoms = _atoms(tx, row)
         data["steps"] = _steps(tx, row, data["steps"], {a["agent"]: a["p"] for a in atoms})
     relevant = _relevant_agents(data, [a["agent"] for a in atoms])

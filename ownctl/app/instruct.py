@@ -49,7 +49,7 @@ def add_claim(
         "exclusive": exclusive,
     }
     with changing(ctx, payload, actor=speaker) as (tx, mind):
-        tx.object(obj), tx.agent(agent)  # unknown names are errors that list the known ones
+        tx.things.object(obj), tx.world.agent(agent)  # unknown names are errors that list the known ones
         trust = probability("trust", mind.settings.trust)
         stored = mind.claim(obj, agent, p, negated=negated, exclusive=exclusive, speaker=speaker)
     alone = " alone" if exclusive else ""
@@ -72,7 +72,7 @@ def add_permission(ctx: AppContext, action: str, obj: str, value: float, speaker
         outcome = mind.permit(action, obj, value, speaker)
         rules = [r.text() for r in mind.rules[action]]
     with ctx.read() as tx:
-        permission_id = tx.permission_id(action, tx.object(obj).id)
+        permission_id = tx.knowledge.permission_id(action, tx.things.object(obj).id)
     verb = "forbidden" if value >= 0.5 else "allowed"
     learned = ""
     if outcome is not None and outcome.induced:
@@ -93,9 +93,9 @@ def check_references(tx: Tx, rule: Rule) -> None:
         if lit.arg == ANY:
             continue
         if lit.pred == "ownedBy":
-            tx.agent(lit.arg)
+            tx.world.agent(lit.arg)
         elif lit.pred == "inArea":
-            tx.area(lit.arg)
+            tx.world.area(lit.arg)
 
 
 def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
@@ -112,7 +112,7 @@ def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
         result = mind.instruct(norm, speaker)
         assert result is not None
     with ctx.read() as tx:
-        after = [(r.id, r.text) for r in tx.rules(action)]
+        after = [(r.id, r.text) for r in tx.knowledge.rules(action)]
     added = [r.text() for r in result.added]
     removed = sorted(r.text() for r in result.removed)
     parts = [f"added: {t}" for t in added] + [f"removed: {t}" for t in removed]

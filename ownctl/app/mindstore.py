@@ -154,42 +154,42 @@ class Stored:
         rules = _rules_state(mind)
         for action in ACTIONS:
             if rules[action] != base.rules[action]:
-                tx.replace_rules(action, rules[action], now)
+                tx.knowledge.replace_rules(action, rules[action], now)
         for key, value in _switch_values(mind).items():
             if value != base.switches[key]:
-                tx.set_setting(key, value or None)
+                tx.meta.set_setting(key, value or None)
         self.base = self._snapshot(post)
 
     def _save_agents(self, tx: Tx, base: _Base) -> None:
         for name in base.agents:
             if name not in self.mind.agents:
-                tx.remove(tx.agent(name))
+                tx.world.remove(tx.world.agent(name))
                 del self.agent_ids[name]
         for name in self.mind.agents:
             if name not in base.agents:
-                self.agent_ids[name] = tx.add_agent(name, self.mind.now).id
+                self.agent_ids[name] = tx.world.add_agent(name, self.mind.now).id
 
     def _save_areas(self, tx: Tx, base: _Base) -> None:
         now = {a.name: a for a in self.mind.areas}
         for area in base.areas:
             if area.name not in now:
-                tx.remove(tx.area(area.name))
+                tx.world.remove(tx.world.area(area.name))
         for area in self.mind.areas:
             if area not in base.areas:
-                tx.add_area(area.name, area.box)
+                tx.world.add_area(area.name, area.box)
 
     def _save_objects(self, tx: Tx, base: _Base) -> None:
         mind = self.mind
         current = {o.name for o in mind.objects}
         gone = [n for n in base.objects if n not in current]
         if gone:
-            tx.remove_objects([self.ids.pop(n) for n in gone])
+            tx.things.remove_objects([self.ids.pop(n) for n in gone])
         fresh = [o for o in mind.objects if o.name not in base.objects]
         if fresh:
-            ids = tx.add_objects([self._row(o) for o in fresh], mind.now)
+            ids = tx.things.add_objects([self._row(o) for o in fresh], mind.now)
             self.ids.update(ids)
-            tx.add_categories([(ids[o.name], c) for o in fresh for c in o.categories])
-            tx.add_touches([(ids[o.name], self.agent_ids[a], t)
+            tx.things.add_categories([(ids[o.name], c) for o in fresh for c in o.categories])
+            tx.things.add_touches([(ids[o.name], self.agent_ids[a], t)
                             for o in fresh for a, t in o.last_touch.items()])
         for spec in mind.objects:
             old = base.objects.get(spec.name)
@@ -197,12 +197,12 @@ class Stored:
                 continue
             oid = self.ids[spec.name]
             if (old.color, old.position) != (spec.color, spec.position):
-                tx.set_percepts(oid, self._row(spec))
+                tx.things.set_percepts(oid, self._row(spec))
             if old.categories != spec.categories:
-                tx.set_categories(oid, spec.categories)
+                tx.things.set_categories(oid, spec.categories)
             for agent, t in spec.last_touch.items():
                 if old.last_touch.get(agent) != t:
-                    tx.touch(oid, self.agent_ids[agent], t)
+                    tx.things.touch(oid, self.agent_ids[agent], t)
 
     @staticmethod
     def _row(spec: ObjectSpec) -> dict[str, Any]:
@@ -247,18 +247,18 @@ class Stored:
                                  posterior_time=now if known else None)
                 if entry:
                     rows.append({"object_id": oid, "agent_id": self.agent_ids[agent], **entry})
-        tx.write_beliefs(rows)
+        tx.beliefs.write_beliefs(rows)
 
     def _save_permissions(self, tx: Tx, base: _Base) -> None:
         for action in ACTIONS:
             old, new = base.perms.get(action, {}), self.mind.perms[action]
             for name in old:
                 if name not in new and name in self.ids:
-                    tx.delete_permission(action, self.ids[name])
+                    tx.knowledge.delete_permission(action, self.ids[name])
             for name, given in new.items():
                 if old.get(name) != given:
-                    tx.set_permission(action, self.ids[name], given.value, given.speaker, given.time,
-                                      seq=given.seq, seen=seen_to_json(given.seen))
+                    tx.knowledge.set_permission(action, self.ids[name], given.value, given.speaker,
+                                                given.time, seq=given.seq, seen=seen_to_json(given.seen))
 
 
 def _same(a: float, b: float) -> bool:
@@ -269,32 +269,32 @@ def _same(a: float, b: float) -> bool:
 def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool = False) -> Stored:
     """The Mind of the store at time ``now``: every object (``only`` None), or the objects named in
     ``only`` plus, with ``permitted``, every object that carries a permission (a partial Mind)."""
-    stored = tx.settings()
-    agents = tx.agents()
+    stored = tx.meta.settings()
+    agents = tx.world.agents()
     agent_ids = {a.name: a.id for a in agents}
     names = {a.id: a.name for a in agents}
     ids: list[int] | None = None
     if only is not None:
-        wanted = [tx.object(n).id for n in only]
+        wanted = [tx.things.object(n).id for n in only]
         if permitted:
-            wanted += [p.object_id for p in tx.permission_table()]
+            wanted += [p.object_id for p in tx.knowledge.permission_table()]
         ids = sorted(set(wanted))
-    rows = tx.object_table(ids)
-    categories = tx.categories(ids)
-    touches = tx.touch_times(ids)
+    rows = tx.things.object_table(ids)
+    categories = tx.things.categories(ids)
+    touches = tx.things.touch_times(ids)
     specs = [spec_of(r, categories.get(r.id, set()), touches.get(r.id, {})) for r in rows]
     vocabulary = None
     if only is not None:
-        colors, cats = tx.vocabulary()
+        colors, cats = tx.things.vocabulary()
         vocabulary = Vocabulary((), colors, (), cats)
     mind = Mind(tuple(names[a.id] for a in agents), specs,
-                [Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.areas()], to_config(stored),
+                [Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.world.areas()], to_config(stored),
                 switches_of(stored), now=now, touch_times=True, complete=only is None, vocabulary=vocabulary)
     index = {r.id: i for i, r in enumerate(rows)}
     column = {a.id: j for j, a in enumerate(agents)}
     stored_post = np.full(mind.claims.shape, np.nan)
     prior = np.full(mind.claims.shape, np.nan)
-    for b in tx.belief_table(ids):
+    for b in tx.beliefs.belief_table(ids):
         i, j = index[b.object_id], column[b.agent_id]
         if b.claim_p is not None:
             mind.claims[i, j] = b.claim_p
@@ -306,13 +306,13 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
             mind.prior_source[i, j] = b.prior_source or "prediction"
         if b.posterior_p is not None:
             stored_post[i, j] = b.posterior_p
-    for p in tx.permission_rows(ids):
+    for p in tx.knowledge.permission_rows(ids):
         i = index[p.object_id]
         seq = p.seq if p.seq is not None else p.id
         seen = seen_from_json(specs[i].name, p.seen, specs[i])
         mind.restore_permission(p.action, i, Given(p.value, seq, seen, p.speaker, p.time))
-    mind.reserve_ranks(tx.max_permission_seq())
-    for row in tx.rules():
+    mind.reserve_ranks(tx.knowledge.max_permission_seq())
+    for row in tx.knowledge.rules():
         mind.restore_rule(row.action, rule_of(row.text, row.origin),
                           RuleInfo(row.origin, dict(row.provenance or {})))
     out = Stored(mind, {r.name: r.id for r in rows}, agent_ids)

@@ -21,14 +21,14 @@ def owners(ctx: AppContext, obj: str) -> dict[str, Any]:
     """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}]}``, likeliest
     first; ``p`` and ``source`` are the decision belief."""
     with ctx.read() as tx:
-        return {"object": obj, "owners": owner_rows(tx, tx.object(obj).id)}
+        return {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id)}
 
 
 def owner_rows(tx: Tx, object_id: int) -> list[dict[str, Any]]:
     """Every agent's beliefs about one object, likeliest owner first (inside the caller's transaction)."""
-    names = {a.id: a.name for a in tx.agents()}
+    names = {a.id: a.name for a in tx.world.agents()}
     out: list[dict[str, Any]] = []
-    for b in tx.ownership(object_id=object_id):
+    for b in tx.beliefs.ownership(object_id=object_id):
         p, source = decision_belief(b)
         out.append({"agent": names[b.agent_id], "p": p, "source": source, "claim": b.claim_p,
                     "prior": b.prior_p, "posterior": b.posterior_p})
@@ -40,9 +40,9 @@ def owned_by(ctx: AppContext, agent: str, min_p: float = 0.5) -> list[dict[str, 
     """The objects ``agent`` owns with probability >= ``min_p``, likeliest first."""
     min_p = probability("--min", min_p)
     with ctx.read() as tx:
-        who = tx.agent(agent)
-        names = {o.id: o.name for o in tx.objects()}
-        rows = [(names[b.object_id], *decision_belief(b)) for b in tx.ownership(agent_id=who.id)]
+        who = tx.world.agent(agent)
+        names = {o.id: o.name for o in tx.things.objects()}
+        rows = [(names[b.object_id], *decision_belief(b)) for b in tx.beliefs.ownership(agent_id=who.id)]
     rows.sort(key=lambda r: (-r[1], r[0]))
     return [{"object": o, "p": p, "source": s} for o, p, s in rows if p >= min_p]
 
@@ -50,8 +50,8 @@ def owned_by(ctx: AppContext, agent: str, min_p: float = 0.5) -> list[dict[str, 
 def list_claims(ctx: AppContext) -> list[dict[str, Any]]:
     """Every stored claim."""
     with ctx.read() as tx:
-        objects = {o.id: o.name for o in tx.objects()}
-        agents = {a.id: a.name for a in tx.agents()}
+        objects = {o.id: o.name for o in tx.things.objects()}
+        agents = {a.id: a.name for a in tx.world.agents()}
         return [
             {
                 "object": objects[b.object_id],
@@ -61,7 +61,7 @@ def list_claims(ctx: AppContext) -> list[dict[str, Any]]:
                 "trust": b.claim_trust,
                 "time": b.claim_time,
             }
-            for b in tx.ownership()
+            for b in tx.beliefs.ownership()
             if b.claim_p is not None
         ]
 
@@ -82,15 +82,15 @@ def _permission_dict(p: Any, objects: dict[int, str]) -> dict[str, Any]:
 def list_permissions(ctx: AppContext) -> list[dict[str, Any]]:
     """Every object-specific permission, oldest first."""
     with ctx.read() as tx:
-        objects = {o.id: o.name for o in tx.objects()}
-        return [_permission_dict(p, objects) for p in tx.permissions()]
+        objects = {o.id: o.name for o in tx.things.objects()}
+        return [_permission_dict(p, objects) for p in tx.knowledge.permissions()]
 
 
 def remove_permission(ctx: AppContext, permission_id: int) -> Done:
     """Forget one permission."""
     with ctx.read() as tx:
-        row = tx.permission(permission_id)
-        name = tx.object_name(row.object_id)
+        row = tx.knowledge.permission(permission_id)
+        name = tx.things.object_name(row.object_id)
         data = _permission_dict(row, {row.object_id: name})
     payload = {"op": "permission.remove", "id": permission_id}
     with changing(ctx, payload, only=[name], permitted=True) as (_, mind):
@@ -107,7 +107,7 @@ def list_rules(ctx: AppContext) -> list[dict[str, Any]]:
     ``set_accuracy`` is the same for the action's whole rule set. Allow norms carry neither.
     """
     with ctx.read() as tx:
-        rows = tx.rules()
+        rows = tx.knowledge.rules()
         mind = load(tx, ctx.now, only=[], permitted=True).mind
     evidence = {a: mind.evidence(a)[0] for a in sorted({r.action for r in rows})}
     out = []
@@ -125,7 +125,7 @@ def list_rules(ctx: AppContext) -> list[dict[str, Any]]:
 def remove_rule(ctx: AppContext, rule_id: int) -> Done:
     """Forget one rule or allow norm; refused while rules are frozen."""
     with ctx.read() as tx:
-        row = tx.rule(rule_id)
+        row = tx.knowledge.rule(rule_id)
         action, text, origin = row.action, row.text, row.origin
     with changing(ctx, {"op": "rule.remove", "id": rule_id}, only=[], permitted=True) as (_, mind):
         mind.remove_rule(action, rule_of(text, origin))  # posteriors follow the remaining rules
@@ -146,5 +146,5 @@ def events(ctx: AppContext, limit: int | None = None) -> list[dict[str, Any]]:
                 "command": e.command,
                 "payload": e.payload,
             }
-            for e in tx.events(limit)
+            for e in tx.meta.events(limit)
         ]

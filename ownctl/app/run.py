@@ -179,10 +179,10 @@ def _ensure_world(ctx: AppContext, seed: int, layout_seed: int | None) -> bool:
     from ownctl.world.generator import paper_blocks_world
 
     with ctx.read() as tx:
-        empty = not tx.objects()
-        agents = tuple(a.name for a in tx.agents())
-        norms = tuple(tx.truth_norms())
-        base_seed = tx.settings().get("world.seed")
+        empty = not tx.things.objects()
+        agents = tuple(a.name for a in tx.world.agents())
+        norms = tuple(tx.knowledge.truth_norms())
+        base_seed = tx.meta.settings().get("world.seed")
     if not empty and layout_seed is None:
         return False
     rng = np.random.default_rng(seed if layout_seed is None else layout_seed)
@@ -197,7 +197,7 @@ def _ensure_world(ctx: AppContext, seed: int, layout_seed: int | None) -> bool:
     with ctx.write({"op": "world.generate", "seed": seed, "layout_seed": layout_seed}) as tx:
         store_world(tx, world, ctx.now, skip_existing_areas=True)
         if empty:
-            tx.set_setting("world.seed", seed)
+            tx.meta.set_setting("world.seed", seed)
     return True
 
 
@@ -242,7 +242,7 @@ def run(
             stored.save(tx)
             refusal = None if record.allowed else {"action": chosen.action, "object": record.name,
                                                    "steps": list(record.forbidding), "at": ctx.now}
-            tx.converse(target=record.name, action=chosen.action, refusal=refusal)
+            tx.meta.converse(target=record.name, action=chosen.action, refusal=refusal)
         if on_step is not None:
             on_step(record)
 

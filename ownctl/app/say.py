@@ -76,19 +76,19 @@ class SayReport:
 def language_context(ctx: AppContext, speaker: str | None, about: str | None) -> Context:
     """The parser's context: names from the store, speaker/target/action from the conversation."""
     with ctx.read() as tx:
-        talk = tx.conversation()
+        talk = tx.meta.conversation()
         if about is not None:
-            tx.object(about)  # an unknown --about is an error naming the known objects
-        objects = tx.objects()
+            tx.things.object(about)  # an unknown --about is an error naming the known objects
+        objects = tx.things.objects()
         return Context(
             speaker=speaker if speaker is not None else talk.speaker,
             about=about if about is not None else talk.target,
             action=talk.action,
-            agents=frozenset(a.name for a in tx.agents()),
+            agents=frozenset(a.name for a in tx.world.agents()),
             objects=frozenset(o.name for o in objects),
             colors=COLORS | {o.color for o in objects if o.color},
-            areas=frozenset(a.name for a in tx.areas()),
-            categories=frozenset(c for cats in tx.categories().values() for c in cats),
+            areas=frozenset(a.name for a in tx.world.areas()),
+            categories=frozenset(c for cats in tx.things.categories().values() for c in cats),
         )
 
 
@@ -159,7 +159,7 @@ class _Turn:
         from ownctl.app.things import add_agent
 
         with self.ctx.read() as tx:
-            known = ins.agent in {a.name for a in tx.agents()}
+            known = ins.agent in {a.name for a in tx.world.agents()}
         self.report.speaker = ins.agent
         if known:
             return f"{ins.agent} is speaking", {"agent": ins.agent, "added": False}
@@ -169,7 +169,7 @@ class _Turn:
     def _skip(self, ins: Skip) -> tuple[str, dict[str, Any]]:
         self.report.target = ins.object
         with self.ctx.write({"op": "skip", "object": ins.object}, actor=self.report.speaker) as tx:
-            tx.object(ins.object)
+            tx.things.object(ins.object)
         return f"noted: stop acting on {ins.object} (no robot is acting now)", {"object": ins.object}
 
     def _askowner(self, ins: AskOwner) -> tuple[str, dict[str, Any]]:
@@ -252,9 +252,9 @@ def say(
                 done[i] = turn.apply(ins)
             report.results = [done[i] for i in sorted(done)]  # shown in the order understood
             if report.speaker is not None:
-                tx.agent(report.speaker)  # an unknown --as is an error naming the known agents
+                tx.world.agent(report.speaker)  # an unknown --as is an error naming the known agents
             action = turn.action if turn.action is not None else lctx.action
-            tx.converse(speaker=report.speaker, target=report.target, action=action)
+            tx.meta.converse(speaker=report.speaker, target=report.target, action=action)
     finally:
         ctx.interface, ctx.command = saved
     for task in turn.tasks:
@@ -265,7 +265,7 @@ def say(
         entry.update(message=_run_summary(data), data=data)
         report.answers.append(_run_summary(data))
         with ctx.write(None) as tx:
-            tx.converse(action=get_task(task.task).action)
+            tx.meta.converse(action=get_task(task.task).action)
     return report
 
 

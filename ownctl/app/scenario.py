@@ -147,7 +147,8 @@ def load_scenario(path: str, seed: int = 0) -> tuple[Scenario, World]:
 
 def _positions(ctx: AppContext) -> dict[str, tuple[float, float, float] | None]:
     with ctx.read() as tx:
-        return {o.name: None if o.x is None or o.y is None else (o.x, o.y, o.z or 0.0) for o in tx.objects()}
+        return {o.name: None if o.x is None or o.y is None else (o.x, o.y, o.z or 0.0)
+                for o in tx.things.objects()}
 
 
 def check_expectation(ctx: AppContext, expect: Expectation,
@@ -162,7 +163,7 @@ def check_expectation(ctx: AppContext, expect: Expectation,
             return Checked(expect.text, ok, f"{report.data['decision']}: {report.reason}")
         if isinstance(expect, RuleExpectation):
             with ctx.read() as tx:
-                texts = [r.text for r in tx.rules()]
+                texts = [r.text for r in tx.knowledge.rules()]
             action = expect.rule.split()[1]
             mine = [t for t in texts if t.split()[1] == action]
             ok = (expect.rule in texts) == expect.present
@@ -178,7 +179,7 @@ def _owner(ctx: AppContext, expect: OwnerExpectation) -> Checked:
     from ownctl.app.query import owners
 
     with ctx.read() as tx:
-        tx.agent(expect.agent)  # an unknown agent is an error naming the known ones
+        tx.world.agent(expect.agent)  # an unknown agent is an error naming the known ones
     rows = {o["agent"]: o for o in owners(ctx, expect.object)["owners"]}
     row = rows[expect.agent]
     p = row["p"]
@@ -238,7 +239,7 @@ def _run(ctx: AppContext, step: Step, physics: bool, render: str | None, result:
 
     interrupts = [Interrupt(i.action, i.object, i.utterance, i.speaker) for i in step.interrupts]
     with ctx.read() as tx:
-        names = {o.name for o in tx.objects()}
+        names = {o.name for o in tx.things.objects()}
     unknown = sorted({i.object for i in interrupts} - names)
     if unknown:
         raise BadValue(f"unknown object {unknown[0]!r} in an interrupt; known objects: "
@@ -249,7 +250,7 @@ def _run(ctx: AppContext, step: Step, physics: bool, render: str | None, result:
     report = run_function()(ctx, step.text, **kwargs)
     data = report.as_json()
     with ctx.write(None) as tx:
-        tx.converse(action=get_task(step.text).action)
+        tx.meta.converse(action=get_task(step.text).action)
     moved = ", ".join(data["delivered"]) or "nothing"
     left = ", ".join(f"{s['object']} ({s['reason']})" for s in data["skipped"]) or "nothing"
     result.output = [f"moved: {moved}", f"left: {left}",

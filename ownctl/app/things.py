@@ -53,9 +53,9 @@ def list_agents(ctx: AppContext) -> list[dict[str, Any]]:
     """Every agent with how many objects it has touched."""
     with ctx.read() as tx:
         touched: dict[int, int] = {}
-        for _, aid in tx.touches():
+        for _, aid in tx.things.touches():
             touched[aid] = touched.get(aid, 0) + 1
-        return [{"name": a.name, "touched": touched.get(a.id, 0)} for a in tx.agents()]
+        return [{"name": a.name, "touched": touched.get(a.id, 0)} for a in tx.world.agents()]
 
 
 def _remove_named(ctx: AppContext, kind: str, name: str) -> Done:
@@ -64,7 +64,8 @@ def _remove_named(ctx: AppContext, kind: str, name: str) -> Done:
     Beliefs and permissions about it go with it, and predictions and posteriors follow the change.
     """
     with changing(ctx, {"op": f"{kind}.remove", kind: name}) as (tx, mind):
-        {"agent": tx.agent, "area": tx.area, "object": tx.object}[kind](name)  # unknown: lists the known
+        lookup = {"agent": tx.world.agent, "area": tx.world.area, "object": tx.things.object}[kind]
+        lookup(name)  # an unknown name is an error listing the known ones
         {"agent": mind.remove_agent, "area": mind.remove_area, "object": mind.remove_object}[kind](name)
     return Done(f"removed {kind} {name}", {kind: name})
 
@@ -124,7 +125,7 @@ def set_object(
     if not percepts and cats is None:
         raise BadValue("nothing to set; give --color, --pos or --category")
     with changing(ctx, {"op": "object.set", "object": name, **percepts, "categories": cats}) as (tx, mind):
-        tx.object(name)
+        tx.things.object(name)
         position: Any = KEEP
         if "x" in percepts:
             position = None if percepts["x"] is None else (percepts["x"], percepts["y"], percepts["z"])
@@ -155,9 +156,9 @@ def _object_dict(row: Any, categories: set[str], touches: dict[str, float]) -> d
 def list_objects(ctx: AppContext) -> list[dict[str, Any]]:
     """Every object with its percepts; ``last_touch`` maps agents to absolute store times."""
     with ctx.read() as tx:
-        cats = tx.categories()
-        touched = tx.touch_times()
-        return [_object_dict(o, cats.get(o.id, set()), touched.get(o.id, {})) for o in tx.objects()]
+        cats = tx.things.categories()
+        touched = tx.things.touch_times()
+        return [_object_dict(o, cats.get(o.id, set()), touched.get(o.id, {})) for o in tx.things.objects()]
 
 
 def show_object(ctx: AppContext, name: str) -> dict[str, Any]:
@@ -165,11 +166,11 @@ def show_object(ctx: AppContext, name: str) -> dict[str, Any]:
     from ownctl.app.query import owner_rows
 
     with ctx.read() as tx:
-        row = tx.object(name)
-        touches = tx.touch_times([row.id]).get(row.id, {})
-        out = _object_dict(row, tx.categories([row.id]).get(row.id, set()), touches)
+        row = tx.things.object(name)
+        touches = tx.things.touch_times([row.id]).get(row.id, {})
+        out = _object_dict(row, tx.things.categories([row.id]).get(row.id, set()), touches)
         out["permissions"] = [
-            {"id": p.id, "action": p.action, "value": p.value} for p in tx.permissions(row.id)
+            {"id": p.id, "action": p.action, "value": p.value} for p in tx.knowledge.permissions(row.id)
         ]
         out["owners"] = owner_rows(tx, row.id)
     return out
@@ -179,7 +180,7 @@ def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Don
     """Record that ``agent`` interacted with ``obj`` at absolute store time ``at`` (default now)."""
     time = ctx.now if at is None else finite("--at", at)
     with changing(ctx, {"op": "object.touch", "object": obj, "agent": agent, "time": time}) as (tx, mind):
-        tx.object(obj), tx.agent(agent)
+        tx.things.object(obj), tx.world.agent(agent)
         mind.touch(obj, agent, time)  # recency is a percept of prediction
     return Done(f"{agent} touched {obj} at {time:g}", {"object": obj, "agent": agent, "time": time})
 
@@ -199,7 +200,7 @@ def add_area(ctx: AppContext, name: str, box: str) -> Done:
 def list_areas(ctx: AppContext) -> list[dict[str, Any]]:
     """Every area with its box."""
     with ctx.read() as tx:
-        return [{"name": a.name, "box": [a.x0, a.y0, a.x1, a.y1]} for a in tx.areas()]
+        return [{"name": a.name, "box": [a.x0, a.y0, a.x1, a.y1]} for a in tx.world.areas()]
 
 
 def remove_area(ctx: AppContext, name: str) -> Done:

@@ -58,7 +58,7 @@ def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = F
     ids, agents = stored.ids, stored.agent_ids
     truth = [(ids[s.name], agents[a], p)
              for s in world.objects for a, p in world.owners.get(s.name, {}).items()]
-    tx.set_truth(truth, world.norms)
+    tx.knowledge.set_truth(truth, world.norms)
 
 
 def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
@@ -78,23 +78,23 @@ def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
 def current_world(ctx: AppContext, name: str = "") -> World:
     """The store's world with its ground truth, interaction ages measured at ``ctx.now``."""
     with ctx.read() as tx:
-        agents = {a.id: a.name for a in tx.agents()}
-        categories = tx.categories()
-        touched = tx.touch_times()
-        rows = tx.objects()
+        agents = {a.id: a.name for a in tx.world.agents()}
+        categories = tx.things.categories()
+        touched = tx.things.touch_times()
+        rows = tx.things.objects()
         specs = [spec_of(o, categories.get(o.id, set()), touched.get(o.id, {})) for o in rows]
         objects = tuple(replace(s, last_touch={a: max(0.0, ctx.now - t) for a, t in s.last_touch.items()})
                         for s in specs)
         names = {o.id: o.name for o in rows}
         owners: dict[str, dict[str, float]] = {}
-        for (oid, aid), p in tx.truth_owners().items():
+        for (oid, aid), p in tx.knowledge.truth_owners().items():
             owners.setdefault(names[oid], {})[agents[aid]] = p
         return World(
             name=name,
             agents=tuple(agents[i] for i in sorted(agents, key=lambda i: agents[i])),
             objects=objects,
-            areas=tuple(Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.areas()),
-            norms=tuple(tx.truth_norms()),
+            areas=tuple(Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.world.areas()),
+            norms=tuple(tx.knowledge.truth_norms()),
             owners=owners,
         )
 

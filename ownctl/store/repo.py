@@ -55,20 +55,28 @@ class Talk:
     refusal: dict[str, Any] | None = None
 
 
-class Tx:
-    """Typed access to the store inside one transaction."""
+class _Part:
+    """One concern of the store inside a transaction (shares the session and the caches)."""
 
-    def __init__(self, session: Session) -> None:
-        self.session = session
-        self._settings: dict[str, Any] | None = None  # read once per transaction, kept in step
-        self._agents: list[Agent] | None = None  # likewise
+    def __init__(self, tx: Tx) -> None:
+        self.tx = tx
+        self.session = tx.session
 
-    # -- agents ---------------------------------------------------------------------------------
+    def _expire(self, model: type[Base]) -> None:
+        """Forget cached rows of ``model`` after a bulk statement changed them behind the session."""
+        for row in list(self.session.identity_map.values()):
+            if isinstance(row, model):
+                self.session.expire(row)
+
+
+class World(_Part):
+    """Agents and areas: who may own things, and where things can be."""
+
     def agents(self) -> list[Agent]:
         """Every agent, by name (read once per transaction)."""
-        if self._agents is None:
-            self._agents = list(self.session.scalars(select(Agent).order_by(Agent.name)))
-        return list(self._agents)
+        if self.tx._agents is None:
+            self.tx._agents = list(self.session.scalars(select(Agent).order_by(Agent.name)))
+        return list(self.tx._agents)
 
     def agent(self, name: str) -> Agent:
         """The agent called ``name``."""
@@ -80,7 +88,7 @@ class Tx:
     def add_agent(self, name: str, now: float) -> Agent:
         """A new agent, with an empty ownership row for every object."""
         self._unique(Agent, name, "agent")
-        self._agents = None
+        self.tx._agents = None
         row = Agent(name=name, created=now)
         self.session.add(row)
         self.session.flush()
@@ -89,17 +97,40 @@ class Tx:
             self.session.execute(insert(Ownership), [{"object_id": o, "agent_id": row.id} for o in ids])
         return row
 
-    def flush(self) -> None:
-        """Send pending changes of loaded rows (e.g. an object's new percepts) to the database."""
-        self.session.flush()
-
     def remove(self, row: Base) -> None:
         """Delete one row (an agent's or object's beliefs, touches and permissions cascade)."""
-        self._agents = None
+        self.tx._agents = None
         self.session.delete(row)
         self.session.flush()
 
-    # -- objects --------------------------------------------------------------------------------
+    def areas(self) -> list[Area]:
+        """Every area, by name."""
+        return list(self.session.scalars(select(Area).order_by(Area.name)))
+
+    def area(self, name: str) -> Area:
+        """The area called ``name``."""
+        row = self.session.scalar(select(Area).where(Area.name == name))
+        if row is None:
+            raise UnknownName("area", name, self.session.scalars(select(Area.name)))
+        return row
+
+    def add_area(self, name: str, box: Sequence[float]) -> Area:
+        """A new box area."""
+        self._unique(Area, name, "area")
+        x0, y0, x1, y1 = box
+        row = Area(name=name, x0=x0, y0=y0, x1=x1, y1=y1)
+        self.session.add(row)
+        self.session.flush()
+        return row
+
+    def _unique(self, model: type[Agent] | type[Object] | type[Area], name: str, kind: str) -> None:
+        if self.session.scalar(select(model.id).where(model.name == name)) is not None:
+            raise DuplicateName(f"{kind} {name!r} already exists; choose another name")
+
+
+class Things(_Part):
+    """Objects and their percepts: colour, position, categories and touches."""
+
     def objects(self) -> list[Object]:
         """Every object, in the order they were added (by id), as the paper's tasks visit them."""
         return list(self.session.scalars(select(Object).order_by(Object.id)))
@@ -122,16 +153,45 @@ class Tx:
         """The object with primary key ``object_id``, if any."""
         return self.session.get(Object, object_id)
 
-    def add_object(self, name: str, now: float, **percepts: Any) -> Object:
-        """A new object with ``percepts`` (color, x, y, z, extra) and an ownership row per agent."""
-        self._unique(Object, name, "object")
-        row = Object(name=name, created=now, extra=percepts.pop("extra", None) or {}, **percepts)
-        self.session.add(row)
-        self.session.flush()
-        ids = list(self.session.scalars(select(Agent.id)))
-        if ids:
-            self.session.execute(insert(Ownership), [{"object_id": row.id, "agent_id": a} for a in ids])
-        return row
+    def object_table(self, object_ids: Sequence[int] | None = None) -> list[Any]:
+        """Objects as plain rows (id, name, color, x, y, z), in id order; optionally only ``object_ids``."""
+        cols = (Object.id, Object.name, Object.color, Object.x, Object.y, Object.z)
+        query = select(*cols).order_by(Object.id)
+        if object_ids is None:
+            return list(self.session.execute(query))
+        out: list[Any] = []
+        ids = list(object_ids)
+        for start in range(0, len(ids), CHUNK):
+            out += self.session.execute(query.where(Object.id.in_(ids[start : start + CHUNK])))
+        rank = {oid: k for k, oid in enumerate(ids)}
+        return sorted(out, key=lambda r: rank[r.id])
+
+    def add_objects(self, specs: Sequence[dict[str, Any]], now: float) -> dict[str, int]:
+        """Many new objects at once (dicts of name, color, x, y, z), each with an ownership row per
+        agent; returns name -> id. Duplicate names (among them or with stored objects) are refused."""
+        names = [s["name"] for s in specs]
+        taken = sorted(self._object_ids(names)) or sorted(n for n, k in Counter(names).items() if k > 1)
+        if taken:
+            raise DuplicateName(f"object {taken[0]!r} already exists; choose another name")
+        if not specs:
+            return {}
+        keys = ("name", "color", "x", "y", "z")
+        rows = [{**{k: s.get(k) for k in keys}, "extra": s.get("extra") or {}, "created": now} for s in specs]
+        self.session.connection().execute(insert(_table(Object)), rows)
+        ids = self._object_ids(names)
+        agents = list(self.session.scalars(select(Agent.id)))
+        if agents:
+            beliefs = [{"object_id": ids[n], "agent_id": a} for n in names for a in agents]
+            self.session.connection().execute(insert(_table(Ownership)), beliefs)
+        return ids
+
+    def _object_ids(self, names: Sequence[str]) -> dict[str, int]:
+        """name -> id of the stored objects among ``names``."""
+        out: dict[str, int] = {}
+        for start in range(0, len(names), CHUNK):
+            query = select(Object.name, Object.id).where(Object.name.in_(names[start : start + CHUNK]))
+            out.update({name: oid for name, oid in self.session.execute(query)})
+        return out
 
     def remove_objects(self, object_ids: Sequence[int]) -> None:
         """Forget objects (their beliefs, touches, categories and permissions cascade)."""
@@ -178,6 +238,14 @@ class Tx:
         if cats:
             self.session.execute(insert(Category), [{"object_id": object_id, "category": c} for c in cats])
 
+    def add_categories(self, rows: Sequence[tuple[int, str]]) -> None:
+        """Many (object id, category) memberships of new objects, at once."""
+        if rows:
+            self.session.connection().execute(
+                insert(_table(Category)),
+                [{"object_id": o, "category": c} for o, c in sorted(set(rows))],
+            )
+
     def touches(
         self, agent_id: int | None = None, object_ids: Sequence[int] | None = None
     ) -> dict[tuple[int, int], float]:
@@ -198,7 +266,7 @@ class Tx:
 
     def touch_times(self, object_ids: Sequence[int] | None = None) -> dict[int, dict[str, float]]:
         """object id -> {agent name: absolute time of its last interaction} (optionally some objects)."""
-        names = {a.id: a.name for a in self.agents()}
+        names = {a.id: a.name for a in self.tx.world.agents()}
         out: dict[int, dict[str, float]] = {}
         for (oid, aid), time in self.touches(object_ids=object_ids).items():
             out.setdefault(oid, {})[names[aid]] = time
@@ -213,28 +281,18 @@ class Tx:
             row.time = time
         self.session.flush()
 
-    # -- areas ----------------------------------------------------------------------------------
-    def areas(self) -> list[Area]:
-        """Every area, by name."""
-        return list(self.session.scalars(select(Area).order_by(Area.name)))
+    def add_touches(self, rows: Sequence[tuple[int, int, float]]) -> None:
+        """Many (object id, agent id, time) interactions of objects that have none yet, at once."""
+        if rows:
+            self.session.connection().execute(
+                insert(_table(Touch)),
+                [{"object_id": o, "agent_id": a, "time": t} for o, a, t in rows],
+            )
 
-    def area(self, name: str) -> Area:
-        """The area called ``name``."""
-        row = self.session.scalar(select(Area).where(Area.name == name))
-        if row is None:
-            raise UnknownName("area", name, self.session.scalars(select(Area.name)))
-        return row
 
-    def add_area(self, name: str, box: Sequence[float]) -> Area:
-        """A new box area."""
-        self._unique(Area, name, "area")
-        x0, y0, x1, y1 = box
-        row = Area(name=name, x0=x0, y0=y0, x1=x1, y1=y1)
-        self.session.add(row)
-        self.session.flush()
-        return row
+class Beliefs(_Part):
+    """Ownership beliefs: claims, priors and posteriors, one row per (object, agent)."""
 
-    # -- ownership beliefs ----------------------------------------------------------------------
     def ownership(self, object_id: int | None = None, agent_id: int | None = None) -> list[Ownership]:
         """Ownership rows, optionally for one object and/or one agent."""
         query = select(Ownership)
@@ -262,28 +320,6 @@ class Tx:
             out += self.session.execute(query.where(Ownership.object_id.in_(ids[start : start + CHUNK])))
         return out
 
-    def object_table(self, object_ids: Sequence[int] | None = None) -> list[Any]:
-        """Objects as plain rows (id, name, color, x, y, z), in id order; optionally only ``object_ids``."""
-        cols = (Object.id, Object.name, Object.color, Object.x, Object.y, Object.z)
-        query = select(*cols).order_by(Object.id)
-        if object_ids is None:
-            return list(self.session.execute(query))
-        out: list[Any] = []
-        ids = list(object_ids)
-        for start in range(0, len(ids), CHUNK):
-            out += self.session.execute(query.where(Object.id.in_(ids[start : start + CHUNK])))
-        rank = {oid: k for k, oid in enumerate(ids)}
-        return sorted(out, key=lambda r: rank[r.id])
-
-    def clear_posteriors(self, keep: Iterable[int] = ()) -> None:
-        """Forget the posteriors of every object not in ``keep`` (one statement)."""
-        keep = list(keep)
-        query = update(Ownership).where(Ownership.posterior_p.is_not(None))
-        if keep and len(keep) <= CHUNK:
-            query = query.where(Ownership.object_id.not_in(keep))
-        self.session.execute(query.values(posterior_p=None, posterior_source=None, posterior_time=None))
-        self._expire(Ownership)
-
     def write_beliefs(self, rows: Sequence[dict[str, Any]]) -> None:
         """Bulk UPDATE of ownership rows; each dict has object_id, agent_id and the columns to set.
 
@@ -308,60 +344,10 @@ class Tx:
         if rows:
             self._expire(Ownership)
 
-    def _object_ids(self, names: Sequence[str]) -> dict[str, int]:
-        """name -> id of the stored objects among ``names``."""
-        out: dict[str, int] = {}
-        for start in range(0, len(names), CHUNK):
-            query = select(Object.name, Object.id).where(Object.name.in_(names[start : start + CHUNK]))
-            out.update({name: oid for name, oid in self.session.execute(query)})
-        return out
 
-    def add_objects(self, specs: Sequence[dict[str, Any]], now: float) -> dict[str, int]:
-        """Many new objects at once (dicts of name, color, x, y, z), each with an ownership row per
-        agent; returns name -> id. Duplicate names (among them or with stored objects) are refused."""
-        names = [s["name"] for s in specs]
-        taken = sorted(self._object_ids(names)) or sorted(n for n, k in Counter(names).items() if k > 1)
-        if taken:
-            raise DuplicateName(f"object {taken[0]!r} already exists; choose another name")
-        if not specs:
-            return {}
-        keys = ("name", "color", "x", "y", "z")
-        rows = [{**{k: s.get(k) for k in keys}, "extra": s.get("extra") or {}, "created": now} for s in specs]
-        self.session.connection().execute(insert(_table(Object)), rows)
-        ids = self._object_ids(names)
-        agents = list(self.session.scalars(select(Agent.id)))
-        if agents:
-            beliefs = [{"object_id": ids[n], "agent_id": a} for n in names for a in agents]
-            self.session.connection().execute(insert(_table(Ownership)), beliefs)
-        return ids
+class Knowledge(_Part):
+    """What instructors said: permissions and rules, and the ground truth of simulated worlds."""
 
-    def add_touches(self, rows: Sequence[tuple[int, int, float]]) -> None:
-        """Many (object id, agent id, time) interactions of objects that have none yet, at once."""
-        if rows:
-            self.session.connection().execute(
-                insert(_table(Touch)),
-                [{"object_id": o, "agent_id": a, "time": t} for o, a, t in rows],
-            )
-
-    def add_categories(self, rows: Sequence[tuple[int, str]]) -> None:
-        """Many (object id, category) memberships of new objects, at once."""
-        if rows:
-            self.session.connection().execute(
-                insert(_table(Category)),
-                [{"object_id": o, "category": c} for o, c in sorted(set(rows))],
-            )
-
-    def clear_beliefs(self, kinds: Iterable[str]) -> None:
-        """Forget every claim / prior / posterior (``kinds`` among BELIEF_KINDS)."""
-        values: dict[str, Any] = {}
-        for kind in kinds:
-            cols = ("p", "speaker", "trust", "time") if kind == "claim" else ("p", "source", "time")
-            values.update({f"{kind}_{c}": None for c in cols})
-        if values:
-            self.session.execute(update(Ownership).values(**values))
-            self._expire(Ownership)
-
-    # -- permissions ----------------------------------------------------------------------------
     def permissions(self, object_id: int | None = None) -> list[Permission]:
         """Permissions (all, or one object's), oldest first."""
         query = select(Permission).order_by(Permission.id)
@@ -373,6 +359,30 @@ class Tx:
         """Every permission as a plain row (id, action, object_id, value), oldest first."""
         cols = (Permission.id, Permission.action, Permission.object_id, Permission.value)
         return list(self.session.execute(select(*cols).order_by(Permission.id)))
+
+    def permission_rows(self, object_ids: Sequence[int] | None = None) -> list[Any]:
+        """Permissions as plain rows with every column (of every object, or only of ``object_ids``)."""
+        query = select(*_table(Permission).columns).order_by(Permission.id)
+        if object_ids is None:
+            return list(self.session.execute(query))
+        out: list[Any] = []
+        ids = list(object_ids)
+        for start in range(0, len(ids), CHUNK):
+            out += self.session.execute(query.where(Permission.object_id.in_(ids[start : start + CHUNK])))
+        return sorted(out, key=lambda r: r.id)
+
+    def permission_id(self, action: str, object_id: int) -> int | None:
+        """The id of the permission for (action, object), if any."""
+        return self.session.scalar(select(Permission.id).where(Permission.action == action,
+                                                               Permission.object_id == object_id))
+
+    def permission(self, permission_id: int) -> Permission:
+        """The permission with id ``permission_id``."""
+        row = self.session.get(Permission, permission_id)
+        if row is None:
+            ids = [str(i) for i in self.session.scalars(select(Permission.id))]
+            raise UnknownName("permission", str(permission_id), ids)
+        return row
 
     def set_permission(
         self, action: str, object_id: int, value: float, speaker: str | None, now: float,
@@ -398,35 +408,10 @@ class Tx:
                                                       Permission.object_id == object_id))
         self._expire(Permission)
 
-    def permission_rows(self, object_ids: Sequence[int] | None = None) -> list[Any]:
-        """Permissions as plain rows with every column (of every object, or only of ``object_ids``)."""
-        query = select(*_table(Permission).columns).order_by(Permission.id)
-        if object_ids is None:
-            return list(self.session.execute(query))
-        out: list[Any] = []
-        ids = list(object_ids)
-        for start in range(0, len(ids), CHUNK):
-            out += self.session.execute(query.where(Permission.object_id.in_(ids[start : start + CHUNK])))
-        return sorted(out, key=lambda r: r.id)
-
     def max_permission_seq(self) -> int:
         """The highest arrival rank of any permission (0 without any)."""
         return int(self.session.scalar(select(func.max(func.coalesce(Permission.seq, Permission.id)))) or 0)
 
-    def permission_id(self, action: str, object_id: int) -> int | None:
-        """The id of the permission for (action, object), if any."""
-        return self.session.scalar(select(Permission.id).where(Permission.action == action,
-                                                               Permission.object_id == object_id))
-
-    def permission(self, permission_id: int) -> Permission:
-        """The permission with id ``permission_id``."""
-        row = self.session.get(Permission, permission_id)
-        if row is None:
-            ids = [str(i) for i in self.session.scalars(select(Permission.id))]
-            raise UnknownName("permission", str(permission_id), ids)
-        return row
-
-    # -- rules ----------------------------------------------------------------------------------
     def rules(self, action: str | None = None) -> list[RuleRow]:
         """Rules (all, or one action's), by id."""
         query = select(RuleRow).order_by(RuleRow.action, RuleRow.rank, RuleRow.id)
@@ -440,17 +425,6 @@ class Tx:
         if row is None:
             ids = [str(i) for i in self.session.scalars(select(RuleRow.id))]
             raise UnknownName("rule", str(rule_id), ids)
-        return row
-
-    def add_rule(
-        self, action: str, text: str, origin: str, provenance: dict[str, Any], now: float
-    ) -> RuleRow:
-        """Store a rule (its canonical text); an existing equal rule is returned unchanged."""
-        row = self.session.scalar(select(RuleRow).where(RuleRow.action == action, RuleRow.text == text))
-        if row is None:
-            row = RuleRow(action=action, text=text, origin=origin, provenance=provenance, created=now)
-            self.session.add(row)
-            self.session.flush()
         return row
 
     def replace_rules(
@@ -477,26 +451,6 @@ class Tx:
             row.rank = rank
         self.session.flush()
 
-    # -- settings, truth, context, events, bulk deletes -----------------------------------------
-    def settings(self) -> dict[str, Any]:
-        """Every stored setting (key -> JSON value); a copy, read once per transaction."""
-        if self._settings is None:
-            self._settings = {k: v for k, v in self.session.execute(select(Setting.key, Setting.value))}
-        return dict(self._settings)
-
-    def set_setting(self, key: str, value: Any) -> None:
-        """Store (or with ``value`` None, delete) a setting."""
-        self._settings = None
-        row = self.session.get(Setting, key)
-        if value is None:
-            if row is not None:
-                self.session.delete(row)
-        elif row is None:
-            self.session.add(Setting(key=key, value=value))
-        else:
-            row.value = value
-        self.session.flush()
-
     def set_truth(self, owners: Sequence[tuple[int, int, float]], norms: Iterable[str]) -> None:
         """Add ground truth: (object id, agent id, p) triples and true norm texts."""
         if owners:
@@ -517,6 +471,29 @@ class Tx:
         """Ground truth: the true norms, in load order."""
         return list(self.session.scalars(select(TruthNorm.text).order_by(TruthNorm.id)))
 
+
+class Meta(_Part):
+    """Settings, the conversation, the event log and bulk clearing."""
+
+    def settings(self) -> dict[str, Any]:
+        """Every stored setting (key -> JSON value); a copy, read once per transaction."""
+        if self.tx._settings is None:
+            self.tx._settings = {k: v for k, v in self.session.execute(select(Setting.key, Setting.value))}
+        return dict(self.tx._settings)
+
+    def set_setting(self, key: str, value: Any) -> None:
+        """Store (or with ``value`` None, delete) a setting."""
+        self.tx._settings = None
+        row = self.session.get(Setting, key)
+        if value is None:
+            if row is not None:
+                self.session.delete(row)
+        elif row is None:
+            self.session.add(Setting(key=key, value=value))
+        else:
+            row.value = value
+        self.session.flush()
+
     def context(self) -> Conversation:
         """The conversation context row (created on first use)."""
         row = self.session.get(Conversation, 1)
@@ -531,7 +508,7 @@ class Tx:
         row = self.session.get(Conversation, 1)
         if row is None:
             return Talk()
-        target = self.object_by_id(row.target_id) if row.target_id is not None else None
+        target = self.tx.things.object_by_id(row.target_id) if row.target_id is not None else None
         return Talk(row.speaker, target.name if target else None, row.action, row.last_refusal)
 
     def converse(
@@ -542,7 +519,7 @@ class Tx:
         if speaker is not KEEP:
             row.speaker = speaker
         if target is not KEEP:
-            row.target_id = None if target is None else self.object(target).id
+            row.target_id = None if target is None else self.tx.things.object(target).id
         if action is not KEEP:
             row.action = action
         if refusal is not KEEP:
@@ -574,12 +551,18 @@ class Tx:
         self._expire(table)
         return int(count)
 
-    def _expire(self, model: type[Base]) -> None:
-        """Forget cached rows of ``model`` after a bulk statement changed them behind the session."""
-        for row in list(self.session.identity_map.values()):
-            if isinstance(row, model):
-                self.session.expire(row)
 
-    def _unique(self, model: type[Agent] | type[Object] | type[Area], name: str, kind: str) -> None:
-        if self.session.scalar(select(model.id).where(model.name == name)) is not None:
-            raise DuplicateName(f"{kind} {name!r} already exists; choose another name")
+class Tx:
+    """Typed access to the store inside one transaction, by concern: ``world`` (agents, areas),
+    ``things`` (objects and percepts), ``beliefs`` (ownership), ``knowledge`` (permissions, rules,
+    ground truth) and ``meta`` (settings, conversation, event log)."""
+
+    def __init__(self, session: Session) -> None:
+        self.session = session
+        self._settings: dict[str, Any] | None = None  # read once per transaction, kept in step
+        self._agents: list[Agent] | None = None  # likewise
+        self.world = World(self)
+        self.things = Things(self)
+        self.beliefs = Beliefs(self)
+        self.knowledge = Knowledge(self)
+        self.meta = Meta(self)

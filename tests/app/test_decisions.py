@@ -26,8 +26,8 @@ def ctx(tmp_path: Path) -> AppContext:
 
 def _set(ctx: AppContext, obj: str, agent: str, **columns: object) -> None:
     with ctx.write({"op": "test"}) as tx:
-        row = {"object_id": tx.object(obj).id, "agent_id": tx.agent(agent).id, **columns}
-        tx.write_beliefs([row])
+        row = {"object_id": tx.things.object(obj).id, "agent_id": tx.world.agent(agent).id, **columns}
+        tx.beliefs.write_beliefs([row])
 
 
 def test_belief_precedence(ctx: AppContext) -> None:
@@ -43,7 +43,7 @@ def test_belief_precedence(ctx: AppContext) -> None:
     instruct.add_claim(ctx, "wallet", "alexis", 0.8)
     _set(ctx, "wallet", "alexis", posterior_p=0.9, posterior_source="inference")
     with ctx.read() as tx:
-        (row,) = [b for b in tx.ownership() if b.claim_p is not None]
+        (row,) = [b for b in tx.beliefs.ownership() if b.claim_p is not None]
         assert decision_belief(row) == (0.9, "inference")
         assert induction_belief(row) == (0.8, "claim")
     # decisions use the Mind's posterior, computed from the permissions on the object: with none,
@@ -75,7 +75,7 @@ def test_soft_permission_decides_its_step(ctx: AppContext) -> None:
 def test_exclusive_claim_and_trust(ctx: AppContext) -> None:
     instruct.add_claim(ctx, "wallet", "xuan", 1.0)
     with ctx.write({"op": "test"}) as tx:
-        tx.set_setting("trust", 0.5)
+        tx.meta.set_setting("trust", 0.5)
     done = instruct.add_claim(ctx, "wallet", "alexis", 1.0, exclusive=True)
     assert done.data["p"] == 0.5
     owners = {o["agent"]: o["p"] for o in query.owners(ctx, "wallet")["owners"]}

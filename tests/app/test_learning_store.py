@@ -60,9 +60,9 @@ def beliefs(ctx: AppContext) -> dict[tuple[str, str], dict[str, Any]]:
         for o in query.owners(ctx, obj)["owners"]:
             out[(obj, o["agent"])] = o
     with ctx.read() as tx:
-        names = {o.id: o.name for o in tx.objects()}
-        agents = {a.id: a.name for a in tx.agents()}
-        for b in tx.ownership():
+        names = {o.id: o.name for o in tx.things.objects()}
+        agents = {a.id: a.name for a in tx.world.agents()}
+        for b in tx.beliefs.ownership():
             key = (names[b.object_id], agents[b.agent_id])
             out[key].update(prior_source=b.prior_source, prior_time=b.prior_time,
                             posterior_source=b.posterior_source)
@@ -387,17 +387,17 @@ def test_an_agent_without_claims_has_the_calibrated_prior_as_in_the_mind(ctx: Ap
     instruct.add_claim(ctx, "o0", "alexis")
     with ctx.read() as tx:
         own, sources = stored_beliefs(tx, induction_belief)
-        xuan = [a.name for a in tx.agents()].index("xuan")
+        xuan = [a.name for a in tx.world.agents()].index("xuan")
     assert np.allclose(own[:, xuan], PredictConfig().base_rate)
     assert {s[xuan] for s in sources} == {"base-rate"}
 
 def stored_beliefs(tx: Any, belief: Any, only: list[str] | None = None) -> tuple[np.ndarray, list[list[str]]]:
     """The store's beliefs as read by ``belief`` (objects in id order, or in ``only``'s order)."""
-    agents = {a.id: j for j, a in enumerate(tx.agents())}
-    ids = [r.id for r in tx.object_table()] if only is None else [tx.object(n).id for n in only]
+    agents = {a.id: j for j, a in enumerate(tx.world.agents())}
+    ids = [r.id for r in tx.things.object_table()] if only is None else [tx.things.object(n).id for n in only]
     row = {oid: i for i, oid in enumerate(ids)}
     own = np.zeros((len(ids), len(agents)))
     sources = [["none"] * len(agents) for _ in ids]
-    for b in tx.belief_table(ids):
+    for b in tx.beliefs.belief_table(ids):
         own[row[b.object_id], agents[b.agent_id]], sources[row[b.object_id]][agents[b.agent_id]] = belief(b)
     return own, sources

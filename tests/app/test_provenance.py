@@ -21,7 +21,7 @@ def ctx(tmp_path: Path) -> Iterator[AppContext]:
 
 def sources(ctx: AppContext) -> set[str]:
     with ctx.read() as tx:
-        names = [o.name for o in tx.objects()]
+        names = [o.name for o in tx.things.objects()]
     return {o["source"] for n in names for o in query.owners(ctx, n)["owners"]}
 
 
@@ -36,8 +36,8 @@ def test_a_run_without_claims_leaves_base_rates_labelled_as_such(ctx: AppContext
 def test_an_oracle_run_labels_claims_predictions_and_inference(ctx: AppContext) -> None:
     run.run(ctx, "trashAll", instructor="oracle", physics=False)
     with ctx.read() as tx:
-        permitted = {p.object_id for p in tx.permission_table()}
-        rows = tx.belief_table()
+        permitted = {p.object_id for p in tx.knowledge.permission_table()}
+        rows = tx.beliefs.belief_table()
         claimed_agents = {b.agent_id for b in rows if b.claim_p is not None}
         assert claimed_agents
         for b in rows:

@@ -149,12 +149,12 @@ def compare(db: str, mind: Mind, now: float) -> None:
     try:
         stored = [(r["action"], r["text"], r["origin"]) for r in query.list_rules(ctx)]
         with ctx.read() as tx:
-            agents = {a.id: j for j, a in enumerate(tx.agents())}
-            rows = {r.id: r.name for r in tx.object_table()}
+            agents = {a.id: j for j, a in enumerate(tx.world.agents())}
+            rows = {r.id: r.name for r in tx.things.object_table()}
             prior = np.full((len(rows), len(agents)), np.nan)
             post = prior.copy()
             order = {oid: i for i, oid in enumerate(rows)}
-            for b in tx.belief_table():
+            for b in tx.beliefs.belief_table():
                 i, j = order[b.object_id], agents[b.agent_id]
                 prior[i, j] = induction_belief(b)[0]
                 post[i, j] = decision_belief(b)[0]

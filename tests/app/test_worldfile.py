@@ -96,10 +96,10 @@ def test_load_turns_ages_into_absolute_times_and_keeps_truth_apart(tmp_path: Pat
     done = worldfile.load(ctx, str(path))
     assert done.data == {"world": "kitchen", "agents": 2, "areas": 1, "objects": 2, "norms": 2}
     with ctx.read() as tx:
-        touches = {(o, a): t for (o, a), t in tx.touches().items()}
+        touches = {(o, a): t for (o, a), t in tx.things.touches().items()}
         assert sorted(touches.values()) == [750.0, 995.0]
-        assert tx.truth_norms()[0] == "forbid trash if ownedBy any"
-        assert tx.rules() == []  # true norms are not beliefs
+        assert tx.knowledge.truth_norms()[0] == "forbid trash if ownedBy any"
+        assert tx.knowledge.rules() == []  # true norms are not beliefs
     owners = query.owners(ctx, "wallet")["owners"]  # nor are true owners: only the calibrated prior
     assert all(o["claim"] is None and o["source"] == "base-rate" and o["p"] < 0.5 for o in owners)
     ctx.close()

@@ -111,11 +111,11 @@ def test_a_store_with_data_at_the_first_revision_upgrades_to_the_head_losing_not
         assert rules == [("forbid trash if ownedBy any", "given"), ("allow trash if isColored red", "allow")]
         assert query.events(ctx)[0]["command"] == "claim wallet alexis"
         with ctx.read() as tx:
-            talk = tx.conversation()
+            talk = tx.meta.conversation()
             assert (talk.speaker, talk.target, talk.action) == ("alexis", "wallet", "trash")
             assert talk.refusal == {"action": "trash", "object": "wallet"}
-            assert tx.settings() == {"threshold": 0.4}
-            seen = {p.object_id: p.seen for p in tx.permission_rows()}
+            assert tx.meta.settings() == {"threshold": 0.4}
+            seen = {p.object_id: p.seen for p in tx.knowledge.permission_rows()}
             assert seen[1] == {"color": "brown", "position": [0.1, 0.1, 0.0], "categories": [],
                                "touches": {"alexis": 50.0}}
             assert seen[2]["categories"] == ["kitchen"]

@@ -52,9 +52,9 @@ def test_default_store_is_created_on_first_use(tmp_path: Path) -> None:
 def test_in_memory_store(tmp_path: Path) -> None:
     store = open_store(locate("sqlite://"))
     with store.transaction() as tx:
-        tx.add_agent("a", 0.0)
+        tx.world.add_agent("a", 0.0)
     with store.transaction(write=False) as tx:
-        assert [a.name for a in tx.agents()] == ["a"]
+        assert [a.name for a in tx.world.agents()] == ["a"]
     store.close()
 
 
@@ -115,34 +115,36 @@ def test_a_failing_transaction_writes_nothing(tmp_path: Path) -> None:
     store = open_store(_new(tmp_path), create=True)
     with pytest.raises(DuplicateName):
         with store.transaction() as tx:
-            tx.add_agent("a", 0.0)
-            tx.log(0.0, None, "cli", "agent add a", {})
-            tx.add_agent("a", 0.0)
+            tx.world.add_agent("a", 0.0)
+            tx.meta.log(0.0, None, "cli", "agent add a", {})
+            tx.world.add_agent("a", 0.0)
     with store.transaction(write=False) as tx:
-        assert tx.agents() == [] and tx.events() == []
+        assert tx.world.agents() == [] and tx.meta.events() == []
         with pytest.raises(UnknownName, match="known agents: \\(none yet\\)"):
-            tx.agent("a")
+            tx.world.agent("a")
     store.close()
 
 
 def test_beliefs_are_written_in_bulk_and_cascade(tmp_path: Path) -> None:
     store = open_store(_new(tmp_path), create=True)
     with store.transaction() as tx:
-        agents = [tx.add_agent(f"agent{i}", 0.0) for i in range(3)]
-        objects = [tx.add_object(f"block{i}", 0.0, color="red") for i in range(200)]
+        agents = [tx.world.add_agent(f"agent{i}", 0.0) for i in range(3)]
+        ids = tx.things.add_objects([{"name": f"block{i}", "color": "red"} for i in range(200)], 0.0)
+        objects = [tx.things.object(name) for name in ids]
         rows = [
             {"object_id": o.id, "agent_id": agents[1].id, "prior_p": 0.3, "prior_source": "prediction"}
             for o in objects
         ]
-        tx.write_beliefs(rows)
+        tx.beliefs.write_beliefs(rows)
     with store.transaction() as tx:
-        beliefs = tx.ownership(agent_id=agents[1].id)
+        beliefs = tx.beliefs.ownership(agent_id=agents[1].id)
         assert len(beliefs) == 200 and {b.prior_p for b in beliefs} == {0.3}
-        assert len(tx.ownership()) == 600
-        tx.remove(tx.object("block0"))
-        assert len(tx.ownership()) == 597
-        tx.clear_beliefs(["prior"])
-        assert all(b.prior_p is None for b in tx.ownership())
+        assert len(tx.beliefs.ownership()) == 600
+        tx.world.remove(tx.things.object("block0"))
+        assert len(tx.beliefs.ownership()) == 597
+        tx.beliefs.write_beliefs([{"object_id": b.object_id, "agent_id": b.agent_id, "prior_p": None}
+                                  for b in tx.beliefs.ownership()])
+        assert all(b.prior_p is None for b in tx.beliefs.ownership())
     store.close()
 
 
@@ -151,3 +153,17 @@ def test_uncreatable_location_is_a_user_error(tmp_path: Path) -> None:
     blocker.write_text("x")
     with pytest.raises(StoreError, match="cannot create store"):
         open_store(locate(str(blocker / "sub" / "s.db")), create=True)
+
+
+def test_the_repository_is_split_by_concern() -> None:
+    """A transaction offers a few cohesive parts, none a grab bag of every query."""
+    import inspect
+
+    from ownctl.store import repo
+
+    parts = {"world": repo.World, "things": repo.Things, "beliefs": repo.Beliefs,
+             "knowledge": repo.Knowledge, "meta": repo.Meta}
+    for name, part in parts.items():
+        public = [m for m, _ in inspect.getmembers(part, inspect.isfunction) if not m.startswith("_")]
+        assert 0 < len(public) <= 16, (name, public)
+    assert [m for m, _ in inspect.getmembers(repo.Tx, inspect.isfunction) if not m.startswith("_")] == []

@@ -49,10 +49,10 @@ def test_older_store_is_upgraded_on_open(
     location = locate(str(tmp_path / "old.db"))
     store = open_store(location, create=True)
     with store.transaction() as tx:
-        agent = tx.add_agent("alexis", 0.0)
-        wallet = tx.add_object("wallet", 0.0)
-        tx.write_beliefs([{"object_id": wallet.id, "agent_id": agent.id, "claim_p": 1.0}])
-        tx.set_permission("trash", wallet.id, 1.0, None, 0.0)
+        agent = tx.world.add_agent("alexis", 0.0)
+        wallet = tx.things.object(next(iter(tx.things.add_objects([{"name": "wallet"}], 0.0))))
+        tx.beliefs.write_beliefs([{"object_id": wallet.id, "agent_id": agent.id, "claim_p": 1.0}])
+        tx.knowledge.set_permission("trash", wallet.id, 1.0, None, 0.0)
     store.close()
     old_head = migrate.head_revision()
 
@@ -62,8 +62,8 @@ def test_older_store_is_upgraded_on_open(
     upgraded = open_store(location)
     assert upgraded.previous == old_head and upgraded.revision() == "9001"
     with upgraded.transaction(write=False) as tx:  # nothing cascaded away while objects was copied
-        assert [b.claim_p for b in tx.ownership()] == [1.0]
-        assert len(tx.permissions()) == 1
+        assert [b.claim_p for b in tx.beliefs.ownership()] == [1.0]
+        assert len(tx.knowledge.permissions()) == 1
     with upgraded.engine.connect() as conn:
         assert "mass" in {row[1] for row in conn.exec_driver_sql("PRAGMA table_info(objects)")}
         assert conn.exec_driver_sql("PRAGMA foreign_keys").scalar() == 1
