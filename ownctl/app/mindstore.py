@@ -84,11 +84,12 @@ class _Base:
     agents: tuple[str, ...]
     areas: tuple[Area, ...]
     objects: dict[str, ObjectSpec]
-    claims: dict[str, np.ndarray]
+    row: dict[str, int]  # object name -> row of the belief arrays below
+    claims: np.ndarray
     claim_info: dict[tuple[str, str], ClaimInfo]
-    prior: dict[str, np.ndarray]
-    source: dict[str, np.ndarray]
-    posterior: dict[str, np.ndarray]
+    prior: np.ndarray  # NaN where the store holds no prior
+    source: np.ndarray
+    posterior: np.ndarray  # NaN where the store holds no posterior
     perms: dict[str, dict[str, Given]]
     rules: dict[str, list[tuple[str, str, Any]]]
     switches: dict[str, bool]
@@ -126,15 +127,11 @@ class Stored:
 
     def _snapshot(self, stored_posterior: np.ndarray | None = None) -> _Base:
         mind = self.mind
-        names = [o.name for o in mind.objects]
         post = _stored_posterior(mind) if stored_posterior is None else stored_posterior
-        prior = mind.predicted.copy()
         return _Base(
             agents=mind.agents, areas=tuple(mind.areas), objects={o.name: o for o in mind.objects},
-            claims=dict(zip(names, mind.claims.copy(), strict=True)), claim_info=dict(mind.claim_info),
-            prior=dict(zip(names, prior, strict=True)),
-            source=dict(zip(names, mind.prior_source.copy(), strict=True)),
-            posterior=dict(zip(names, post, strict=True)),
+            row=dict(mind.index), claims=mind.claims.copy(), claim_info=dict(mind.claim_info),
+            prior=mind.predicted.copy(), source=mind.prior_source.copy(), posterior=post,
             perms={a: dict(g) for a, g in mind.perms.items()}, rules=_rules_state(mind),
             switches=_switch_values(mind),
         )
@@ -210,44 +207,49 @@ class Stored:
         return {"name": spec.name, "color": spec.color, "x": x, "y": y, "z": z}
 
     def _save_beliefs(self, tx: Tx, base: _Base, post: np.ndarray) -> None:
+        """Write the claims, priors and posteriors that differ from the baseline (in bulk)."""
         mind, now = self.mind, self.mind.now
-        m = len(mind.agents)
+        n, m = mind.claims.shape
+        rows = np.array([base.row.get(o.name, -1) for o in mind.objects], dtype=int)
         old_cols = {a: k for k, a in enumerate(base.agents)}
-        take = np.array([old_cols.get(a, -1) for a in mind.agents], dtype=int)
-        rows: list[dict[str, Any]] = []
-        for i, spec in enumerate(mind.objects):
-            name = spec.name
-            oid = self.ids[name]
-            if name in base.claims:
-                def old(table: dict[str, np.ndarray], fill: Any, name: str = name) -> np.ndarray:
-                    row = table[name]
-                    return np.array([row[k] if k >= 0 else fill for k in take], dtype=row.dtype)
-                claims, prior = old(base.claims, np.nan), old(base.prior, np.nan)
-                source, posterior = old(base.source, None), old(base.posterior, np.nan)
-            else:
-                claims = prior = posterior = np.full(m, np.nan)
-                source = np.full(m, None, dtype=object)
-            for j, agent in enumerate(mind.agents):
-                entry: dict[str, Any] = {}
+        cols = np.array([old_cols.get(a, -1) for a in mind.agents], dtype=int)
+        known = (rows[:, None] >= 0) & (cols[None, :] >= 0)
+
+        def old(table: np.ndarray, fill: Any) -> np.ndarray:
+            out = np.full((n, m), fill, dtype=table.dtype)
+            if table.size and known.any():
+                picked = table[np.clip(rows, 0, None)][:, np.clip(cols, 0, None)]
+                out[known] = picked[known]
+            return out
+
+        claim_changed = ~_same(mind.claims, old(base.claims, np.nan))
+        prior_changed = ~_same(mind.predicted, old(base.prior, np.nan)) | (
+            mind.prior_source != old(base.source, None))
+        post_changed = ~_same(post, old(base.posterior, np.nan))
+        for name, agent in {**base.claim_info, **mind.claim_info}:
+            moved = mind.claim_info.get((name, agent)) != base.claim_info.get((name, agent))
+            if moved and name in mind.index and agent in mind.agents:
+                claim_changed[mind.index[name], mind.agents.index(agent)] = True
+        out: list[dict[str, Any]] = []
+        for i, j in np.argwhere(claim_changed | prior_changed | post_changed):
+            name, agent = mind.objects[i].name, mind.agents[j]
+            entry: dict[str, Any] = {"object_id": self.ids[name], "agent_id": self.agent_ids[agent]}
+            if claim_changed[i, j]:
                 c = mind.claims[i, j]
-                info = mind.claim_info.get((name, agent))
-                if not _same(c, claims[j]) or info != base.claim_info.get((name, agent)):
-                    meta = info or ClaimInfo()
-                    entry.update(claim_p=None if np.isnan(c) else float(c),
-                                 claim_speaker=None if np.isnan(c) else meta.speaker,
-                                 claim_trust=None if np.isnan(c) else meta.trust,
-                                 claim_time=None if np.isnan(c) else meta.time)
-                if not _same(mind.predicted[i, j], prior[j]) or mind.prior_source[i, j] != source[j]:
-                    entry.update(prior_p=float(mind.predicted[i, j]),
-                                 prior_source=str(mind.prior_source[i, j]), prior_time=now)
-                if not _same(post[i, j], posterior[j]):
-                    known = not np.isnan(post[i, j])
-                    entry.update(posterior_p=float(post[i, j]) if known else None,
-                                 posterior_source="inference" if known else None,
-                                 posterior_time=now if known else None)
-                if entry:
-                    rows.append({"object_id": oid, "agent_id": self.agent_ids[agent], **entry})
-        tx.beliefs.write_beliefs(rows)
+                meta = mind.claim_info.get((name, agent)) or ClaimInfo()
+                held = not np.isnan(c)
+                entry.update(claim_p=float(c) if held else None, claim_speaker=meta.speaker if held else None,
+                             claim_trust=meta.trust if held else None, claim_time=meta.time if held else None)
+            if prior_changed[i, j]:
+                entry.update(prior_p=float(mind.predicted[i, j]), prior_source=str(mind.prior_source[i, j]),
+                             prior_time=now)
+            if post_changed[i, j]:
+                held = not np.isnan(post[i, j])
+                entry.update(posterior_p=float(post[i, j]) if held else None,
+                             posterior_source="inference" if held else None,
+                             posterior_time=now if held else None)
+            out.append(entry)
+        tx.beliefs.write_beliefs(out)
 
     def _save_permissions(self, tx: Tx, base: _Base) -> None:
         for action in ACTIONS:
@@ -261,8 +263,9 @@ class Stored:
                                                 given.time, seq=given.seq, seen=seen_to_json(given.seen))
 
 
-def _same(a: float, b: float) -> bool:
-    return bool((np.isnan(a) and np.isnan(b)) or a == b)
+def _same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """Elementwise: equal, or both NaN."""
+    return np.asarray((a == b) | (np.isnan(a) & np.isnan(b)))
 
 
 # -- loading ----------------------------------------------------------------------------------------
@@ -294,18 +297,23 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     column = {a.id: j for j, a in enumerate(agents)}
     stored_post = np.full(mind.claims.shape, np.nan)
     prior = np.full(mind.claims.shape, np.nan)
-    for b in tx.beliefs.belief_table(ids):
-        i, j = index[b.object_id], column[b.agent_id]
-        if b.claim_p is not None:
-            mind.claims[i, j] = b.claim_p
-            mind.claim_info[(specs[i].name, names[b.agent_id])] = ClaimInfo(
+    beliefs = tx.beliefs.belief_table(ids)
+    if beliefs:
+        bi = np.array([index[b.object_id] for b in beliefs], dtype=int)
+        bj = np.array([column[b.agent_id] for b in beliefs], dtype=int)
+        claim = np.array([b.claim_p for b in beliefs], dtype=float)
+        mind.claims[bi, bj] = claim
+        prior[bi, bj] = np.array([b.prior_p for b in beliefs], dtype=float)
+        stored_post[bi, bj] = np.array([b.posterior_p for b in beliefs], dtype=float)
+        has_prior = ~np.isnan(prior[bi, bj])
+        mind.predicted[bi[has_prior], bj[has_prior]] = prior[bi[has_prior], bj[has_prior]]
+        source = np.array([b.prior_source or "prediction" for b in beliefs], dtype=object)
+        mind.prior_source[bi[has_prior], bj[has_prior]] = source[has_prior]
+        for k in np.flatnonzero(~np.isnan(claim)):
+            b = beliefs[k]
+            mind.claim_info[(specs[bi[k]].name, names[b.agent_id])] = ClaimInfo(
                 b.claim_speaker, 1.0 if b.claim_trust is None else b.claim_trust,
                 0.0 if b.claim_time is None else b.claim_time)
-        if b.prior_p is not None:
-            mind.predicted[i, j] = prior[i, j] = b.prior_p
-            mind.prior_source[i, j] = b.prior_source or "prediction"
-        if b.posterior_p is not None:
-            stored_post[i, j] = b.posterior_p
     for p in tx.knowledge.permission_rows(ids):
         i = index[p.object_id]
         seq = p.seq if p.seq is not None else p.id
@@ -317,9 +325,7 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
                           RuleInfo(row.origin, dict(row.provenance or {})))
     out = Stored(mind, {r.name: r.id for r in rows}, agent_ids)
     # compare with what the store really holds (NULL priors and posteriors are written on save)
-    names_list = [s.name for s in specs]
-    out.base.prior = dict(zip(names_list, prior, strict=True))
-    out.base.posterior = dict(zip(names_list, stored_post, strict=True))
+    out.base.prior, out.base.posterior = prior, stored_post
     return out
 
 

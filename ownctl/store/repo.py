@@ -158,11 +158,11 @@ class Things(_Part):
         cols = (Object.id, Object.name, Object.color, Object.x, Object.y, Object.z)
         query = select(*cols).order_by(Object.id)
         if object_ids is None:
-            return list(self.session.execute(query))
+            return list(self.session.execute(query).all())
         out: list[Any] = []
         ids = list(object_ids)
         for start in range(0, len(ids), CHUNK):
-            out += self.session.execute(query.where(Object.id.in_(ids[start : start + CHUNK])))
+            out.extend(self.session.execute(query.where(Object.id.in_(ids[start : start + CHUNK]))).all())
         rank = {oid: k for k, oid in enumerate(ids)}
         return sorted(out, key=lambda r: rank[r.id])
 
@@ -190,7 +190,7 @@ class Things(_Part):
         out: dict[str, int] = {}
         for start in range(0, len(names), CHUNK):
             query = select(Object.name, Object.id).where(Object.name.in_(names[start : start + CHUNK]))
-            out.update({name: oid for name, oid in self.session.execute(query)})
+            out.update({name: oid for name, oid in self.session.execute(query).all()})
         return out
 
     def remove_objects(self, object_ids: Sequence[int]) -> None:
@@ -227,7 +227,7 @@ class Things(_Part):
         ]
         out: dict[int, set[str]] = {}
         for q in queries:
-            for oid, cat in self.session.execute(q):
+            for oid, cat in self.session.execute(q).all():
                 out.setdefault(oid, set()).add(cat)
         return out
 
@@ -257,11 +257,11 @@ class Things(_Part):
         if agent_id is not None:
             query = query.where(Touch.agent_id == agent_id)
         if object_ids is None:
-            return {(o, a): t for o, a, t in self.session.execute(query)}
+            return {(o, a): t for o, a, t in self.session.execute(query).all()}
         ids, out = list(object_ids), {}
         for start in range(0, len(ids), CHUNK):
             chunk = query.where(Touch.object_id.in_(ids[start : start + CHUNK]))
-            out.update({(o, a): t for o, a, t in self.session.execute(chunk)})
+            out.update({(o, a): t for o, a, t in self.session.execute(chunk).all()})
         return out
 
     def touch_times(self, object_ids: Sequence[int] | None = None) -> dict[int, dict[str, float]]:
@@ -313,11 +313,12 @@ class Beliefs(_Part):
         if agent_id is not None:
             query = query.where(Ownership.agent_id == agent_id)
         if object_ids is None:
-            return list(self.session.execute(query))
+            return list(self.session.execute(query).all())
         out: list[Any] = []
         ids = list(object_ids)
         for start in range(0, len(ids), CHUNK):
-            out += self.session.execute(query.where(Ownership.object_id.in_(ids[start : start + CHUNK])))
+            chunk = query.where(Ownership.object_id.in_(ids[start : start + CHUNK]))
+            out.extend(self.session.execute(chunk).all())
         return out
 
     def write_beliefs(self, rows: Sequence[dict[str, Any]]) -> None:
@@ -358,17 +359,18 @@ class Knowledge(_Part):
     def permission_table(self) -> list[Any]:
         """Every permission as a plain row (id, action, object_id, value), oldest first."""
         cols = (Permission.id, Permission.action, Permission.object_id, Permission.value)
-        return list(self.session.execute(select(*cols).order_by(Permission.id)))
+        return list(self.session.execute(select(*cols).order_by(Permission.id)).all())
 
     def permission_rows(self, object_ids: Sequence[int] | None = None) -> list[Any]:
         """Permissions as plain rows with every column (of every object, or only of ``object_ids``)."""
         query = select(*_table(Permission).columns).order_by(Permission.id)
         if object_ids is None:
-            return list(self.session.execute(query))
+            return list(self.session.execute(query).all())
         out: list[Any] = []
         ids = list(object_ids)
         for start in range(0, len(ids), CHUNK):
-            out += self.session.execute(query.where(Permission.object_id.in_(ids[start : start + CHUNK])))
+            chunk = query.where(Permission.object_id.in_(ids[start : start + CHUNK]))
+            out.extend(self.session.execute(chunk).all())
         return sorted(out, key=lambda r: r.id)
 
     def permission_id(self, action: str, object_id: int) -> int | None:
