@@ -48,8 +48,10 @@ def add_claim(
         "negated": negated,
         "exclusive": exclusive,
     }
-    with changing(ctx, payload, actor=speaker) as (tx, mind):
+    with ctx.read() as tx:
         tx.things.object(obj), tx.world.agent(agent)  # unknown names are errors that list the known ones
+        focus = [a.name for a in tx.world.agents()] if exclusive else [agent]
+    with changing(ctx, payload, actor=speaker, agents=focus) as (tx, mind):
         trust = probability("trust", mind.settings.trust)
         stored = mind.claim(obj, agent, p, negated=negated, exclusive=exclusive, speaker=speaker)
     alone = " alone" if exclusive else ""

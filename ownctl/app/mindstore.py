@@ -120,6 +120,7 @@ class Stored:
     mind: Mind
     ids: dict[str, int]  # object name -> id
     agent_ids: dict[str, int]
+    writable: np.ndarray | None = None  # the belief cells that were loaded (None: all of them)
     base: _Base = field(init=False)
 
     def __post_init__(self) -> None:
@@ -226,6 +227,10 @@ class Stored:
         prior_changed = ~_same(mind.predicted, old(base.prior, np.nan)) | (
             mind.prior_source != old(base.source, None))
         post_changed = ~_same(post, old(base.posterior, np.nan))
+        if self.writable is not None:  # cells that were not loaded are not the Mind's to write
+            claim_changed &= self.writable
+            prior_changed &= self.writable
+            post_changed &= self.writable
         for name, agent in {**base.claim_info, **mind.claim_info}:
             moved = mind.claim_info.get((name, agent)) != base.claim_info.get((name, agent))
             if moved and name in mind.index and agent in mind.agents:
@@ -269,35 +274,56 @@ def _same(a: np.ndarray, b: np.ndarray) -> np.ndarray:
 
 
 # -- loading ----------------------------------------------------------------------------------------
-def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool = False) -> Stored:
+def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool = False,
+         agents: Sequence[str] | None = None) -> Stored:
     """The Mind of the store at time ``now``: every object (``only`` None), or the objects named in
-    ``only`` plus, with ``permitted``, every object that carries a permission (a partial Mind)."""
-    stored = tx.meta.settings()
-    agents = tx.world.agents()
-    agent_ids = {a.name: a.id for a in agents}
-    names = {a.id: a.name for a in agents}
+    ``only`` plus, with ``permitted``, every object that carries a permission (a partial Mind).
+
+    ``agents`` (with every object) loads only what refitting those agents' predictors needs: their
+    touches and beliefs, and every belief about the objects that carry permissions (what inference
+    reads); the Mind may then refit only their predictors (a claim about one agent).
+    """
+    refit, stored = agents, tx.meta.settings()
+    known = tx.world.agents()
+    agent_ids = {a.name: a.id for a in known}
+    names = {a.id: a.name for a in known}
     ids: list[int] | None = None
     if only is not None:
         wanted = [tx.things.object(n).id for n in only]
         if permitted:
             wanted += [p.object_id for p in tx.knowledge.permission_table()]
         ids = sorted(set(wanted))
+    focus = None if refit is None or only is not None else [agent_ids[a] for a in dict.fromkeys(refit)]
     rows = tx.things.object_table(ids)
     categories = tx.things.categories(ids)
-    touches = tx.things.touch_times(ids)
+    touches = tx.things.touch_times(ids, agent_ids=focus)
     specs = [spec_of(r, categories.get(r.id, set()), touches.get(r.id, {})) for r in rows]
     vocabulary = None
     if only is not None:
         colors, cats = tx.things.vocabulary()
         vocabulary = Vocabulary((), colors, (), cats)
-    mind = Mind(tuple(names[a.id] for a in agents), specs,
+    mind = Mind(tuple(names[a.id] for a in known), specs,
                 [Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.world.areas()], to_config(stored),
-                switches_of(stored), now=now, touch_times=True, complete=only is None, vocabulary=vocabulary)
+                switches_of(stored), now=now, touch_times=True, complete=only is None, vocabulary=vocabulary,
+                refit=None if focus is None else [names[a] for a in focus])
     index = {r.id: i for i, r in enumerate(rows)}
-    column = {a.id: j for j, a in enumerate(agents)}
+    column = {a.id: j for j, a in enumerate(known)}
     stored_post = np.full(mind.claims.shape, np.nan)
     prior = np.full(mind.claims.shape, np.nan)
-    beliefs = tx.beliefs.belief_table(ids)
+    writable = None
+    if focus is None:
+        beliefs = tx.beliefs.belief_table(ids)
+    else:
+        carrying = sorted({p.object_id for p in tx.knowledge.permission_table()})
+        seen_pairs = set()
+        beliefs = []
+        for b in [*tx.beliefs.belief_table(agent_ids=focus), *tx.beliefs.belief_table(carrying)]:
+            if (b.object_id, b.agent_id) not in seen_pairs:
+                seen_pairs.add((b.object_id, b.agent_id))
+                beliefs.append(b)
+        writable = np.zeros(mind.claims.shape, dtype=bool)
+        writable[:, [column[a] for a in focus]] = True
+        writable[[index[o] for o in carrying], :] = True
     if beliefs:
         bi = np.array([index[b.object_id] for b in beliefs], dtype=int)
         bj = np.array([column[b.agent_id] for b in beliefs], dtype=int)
@@ -323,7 +349,7 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     for row in tx.knowledge.rules():
         mind.restore_rule(row.action, rule_of(row.text, row.origin),
                           RuleInfo(row.origin, dict(row.provenance or {})))
-    out = Stored(mind, {r.name: r.id for r in rows}, agent_ids)
+    out = Stored(mind, {r.name: r.id for r in rows}, agent_ids, writable)
     # compare with what the store really holds (NULL priors and posteriors are written on save)
     out.base.prior, out.base.posterior = prior, stored_post
     return out
@@ -331,10 +357,11 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
 
 @contextmanager
 def changing(ctx: AppContext, payload: dict[str, Any], actor: str | None = None,
-             only: Sequence[str] | None = None, permitted: bool = False) -> Iterator[tuple[Tx, Mind]]:
+             only: Sequence[str] | None = None, permitted: bool = False,
+             agents: Sequence[str] | None = None) -> Iterator[tuple[Tx, Mind]]:
     """One instruction as one write transaction: log it, load the Mind it needs (see :func:`load`),
     let the caller change it, save what changed. An error leaves the store as it was."""
     with ctx.write(payload, actor=actor) as tx:
-        stored = load(tx, ctx.now, only, permitted)
+        stored = load(tx, ctx.now, only, permitted, agents)
         yield tx, stored.mind
         stored.save(tx)

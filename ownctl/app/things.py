@@ -179,8 +179,10 @@ def show_object(ctx: AppContext, name: str) -> dict[str, Any]:
 def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Done:
     """Record that ``agent`` interacted with ``obj`` at absolute store time ``at`` (default now)."""
     time = ctx.now if at is None else finite("--at", at)
-    with changing(ctx, {"op": "object.touch", "object": obj, "agent": agent, "time": time}) as (tx, mind):
-        tx.things.object(obj), tx.world.agent(agent)
+    with ctx.read() as tx:
+        tx.things.object(obj), tx.world.agent(agent)  # unknown names are errors listing the known ones
+    payload = {"op": "object.touch", "object": obj, "agent": agent, "time": time}
+    with changing(ctx, payload, agents=[agent]) as (_, mind):
         mind.touch(obj, agent, time)  # recency is a percept of prediction
     return Done(f"{agent} touched {obj} at {time:g}", {"object": obj, "agent": agent, "time": time})
 

@@ -119,7 +119,9 @@ class Mind:
     ``objects``' ``last_touch`` values are ages at ``now`` (as world descriptions give them) unless
     ``touch_times`` is true, when they are absolute times. ``vocabulary`` fixes the colours and
     categories induction may use (the store-wide ones, for a partial Mind); by default they are
-    those of the objects held.
+    those of the objects held. ``refit`` (default: every agent) names the agents whose predictors
+    may be refitted: a Mind loaded for a claim holds only those agents' touches and beliefs, and
+    the beliefs of the objects that carry permissions.
     """
 
     def __init__(
@@ -134,6 +136,7 @@ class Mind:
         touch_times: bool = False,
         complete: bool = True,
         vocabulary: Vocabulary | None = None,
+        refit: Sequence[str] | None = None,
     ) -> None:
         self.settings = settings or Settings()
         self.switches = switches or Switches()
@@ -146,6 +149,7 @@ class Mind:
             for o in objects
         ]
         self._fixed_vocab = vocabulary
+        self._refit = None if refit is None else frozenset(refit)  # agents whose predictors may be refitted
         n, m = len(self.objects), len(self.agents)
         base = self._base_rate()
         self.claims = np.full((n, m), np.nan)
@@ -216,8 +220,11 @@ class Mind:
 
     def _stale_agents(self, agents: Iterable[str]) -> None:
         fresh = set(agents)
-        if fresh and self.switches.prediction and not self.complete:
-            raise RuntimeError("refitting a predictor needs every object; load the whole store")
+        if fresh and self.switches.prediction:
+            if not self.complete:
+                raise RuntimeError("refitting a predictor needs every object; load the whole store")
+            if self._refit is not None and not fresh <= self._refit:
+                raise RuntimeError(f"the predictors of {sorted(fresh - self._refit)} were not loaded")
         self._stale.update(fresh)
         self._posterior = None
 

@@ -264,11 +264,20 @@ class Things(_Part):
             out.update({(o, a): t for o, a, t in self.session.execute(chunk).all()})
         return out
 
-    def touch_times(self, object_ids: Sequence[int] | None = None) -> dict[int, dict[str, float]]:
-        """object id -> {agent name: absolute time of its last interaction} (optionally some objects)."""
+    def touch_times(
+        self, object_ids: Sequence[int] | None = None, agent_ids: Sequence[int] | None = None
+    ) -> dict[int, dict[str, float]]:
+        """object id -> {agent name: absolute time of its last interaction} (optionally some objects,
+        and only some agents' interactions)."""
         names = {a.id: a.name for a in self.tx.world.agents()}
         out: dict[int, dict[str, float]] = {}
-        for (oid, aid), time in self.touches(object_ids=object_ids).items():
+        if agent_ids is not None:
+            pairs: dict[tuple[int, int], float] = {}
+            for aid in agent_ids:
+                pairs.update(self.touches(agent_id=aid, object_ids=object_ids))
+        else:
+            pairs = self.touches(object_ids=object_ids)
+        for (oid, aid), time in pairs.items():
             out.setdefault(oid, {})[names[aid]] = time
         return out
 
@@ -303,15 +312,19 @@ class Beliefs(_Part):
         return list(self.session.scalars(query.order_by(Ownership.object_id, Ownership.agent_id)))
 
     def belief_table(
-        self, object_ids: Sequence[int] | None = None, agent_id: int | None = None
+        self, object_ids: Sequence[int] | None = None, agent_id: int | None = None,
+        agent_ids: Sequence[int] | None = None,
     ) -> list[Any]:
         """Ownership beliefs as plain rows (attribute access by column name), without ORM objects.
 
-        The fast path for reading many beliefs at once: optionally only ``object_ids`` and/or one agent.
+        The fast path for reading many beliefs at once: optionally only ``object_ids`` and/or one
+        agent (or only ``agent_ids``).
         """
         query = select(*_table(Ownership).columns)
         if agent_id is not None:
             query = query.where(Ownership.agent_id == agent_id)
+        if agent_ids is not None:
+            query = query.where(Ownership.agent_id.in_(list(agent_ids)))
         if object_ids is None:
             return list(self.session.execute(query).all())
         out: list[Any] = []
