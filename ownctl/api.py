@@ -21,11 +21,10 @@ messages.
 from __future__ import annotations
 
 import time
-from collections.abc import Callable, Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from types import TracebackType
-from typing import Any
+from typing import Any, TypeVar
 
 from ownctl.app import admin, decide, explain, instruct, query, things
 from ownctl.app.context import AppContext, Done
@@ -34,6 +33,8 @@ from ownctl.app.explain import Explanation
 from ownctl.app.run import RunReport
 
 __all__ = ["CheckReport", "Done", "Explanation", "Ownctl", "RunReport"]
+
+T = TypeVar("T")
 
 
 @dataclass
@@ -47,8 +48,14 @@ class Ownctl:
     _ctx: AppContext | None = field(default=None, repr=False)
 
     @classmethod
-    def open(cls, db: str | None = None, *, create: bool = False, clock: Callable[[], float] = time.time,
-             speaker: str | None = None) -> Ownctl:
+    def open(
+        cls,
+        db: str | None = None,
+        *,
+        create: bool = False,
+        clock: Callable[[], float] = time.time,
+        speaker: str | None = None,
+    ) -> Ownctl:
         """Open the store ``db`` (a SQLAlchemy URL or SQLite path; None: the default store).
 
         A named store that does not exist is an error unless ``create``; the default store is
@@ -64,11 +71,12 @@ class Ownctl:
         self._ctx.now = self.clock()
         return self._ctx
 
-    @contextmanager
-    def _call(self, command: str) -> Iterator[AppContext]:
+    def _do(self, command: str, use_case: Callable[[AppContext], T]) -> T:
+        """Run one use case as ``command`` (one transaction; tried again while another writer holds
+        the store, as the command line does)."""
         ctx = self._context()
         ctx.command = command
-        yield ctx
+        return ctx.retrying(lambda: use_case(ctx))
 
     def close(self) -> None:
         """Close the store."""
@@ -79,94 +87,99 @@ class Ownctl:
     def __enter__(self) -> Ownctl:
         return self
 
-    def __exit__(self, kind: type[BaseException] | None, error: BaseException | None,
-                 tb: TracebackType | None) -> None:
+    def __exit__(
+        self, kind: type[BaseException] | None, error: BaseException | None, tb: TracebackType | None
+    ) -> None:
         self.close()
 
     # -- instructions ------------------------------------------------------------------------------
-    def claim(self, obj: str, agent: str, p: float = 1.0, *, negated: bool = False,
-              exclusive: bool = False) -> Done:
+    def claim(
+        self, obj: str, agent: str, p: float = 1.0, *, negated: bool = False, exclusive: bool = False
+    ) -> Done:
         """``claim OBJ AGENT``: a claim that ``agent`` owns (or with ``negated``: does not own) ``obj``."""
-        with self._call(f"claim {obj} {agent}") as ctx:
-            return instruct.add_claim(ctx, obj, agent, p, negated, exclusive, self.speaker)
+        return self._do(
+            f"claim {obj} {agent}",
+            lambda ctx: instruct.add_claim(ctx, obj, agent, p, negated, exclusive, self.speaker),
+        )
 
     def permit(self, action: str, obj: str, *, forbid: bool) -> Done:
         """``forbid|allow ACTION on OBJ``: an object-specific permission."""
         sign = "forbid" if forbid else "allow"
-        with self._call(f"{sign} {action} on {obj}") as ctx:
-            return instruct.add_permission(ctx, action, obj, 1.0 if forbid else 0.0, self.speaker)
+        return self._do(
+            f"{sign} {action} on {obj}",
+            lambda ctx: instruct.add_permission(ctx, action, obj, 1.0 if forbid else 0.0, self.speaker),
+        )
 
     def forbid(self, action: str, condition: str = "") -> Done:
         """``forbid ACTION if ...``: a given norm (``condition`` such as ``"if ownedBy any"``)."""
         text = f"forbid {action} {condition}".strip()
-        with self._call(text) as ctx:
-            return instruct.add_norm(ctx, text, self.speaker)
+        return self._do(text, lambda ctx: instruct.add_norm(ctx, text, self.speaker))
 
     def allow(self, action: str, condition: str) -> Done:
         """``allow ACTION if ...``: an allow norm, subtracted from the forbid rules."""
         text = f"allow {action} {condition}".strip()
-        with self._call(text) as ctx:
-            return instruct.add_norm(ctx, text, self.speaker)
+        return self._do(text, lambda ctx: instruct.add_norm(ctx, text, self.speaker))
 
     def touch(self, obj: str, agent: str, at: float | None = None) -> Done:
         """``object touch OBJ --by AGENT``: an interaction (a percept of prediction)."""
-        with self._call(f"object touch {obj} --by {agent}") as ctx:
-            return things.touch(ctx, obj, agent, at)
+        return self._do(f"object touch {obj} --by {agent}", lambda ctx: things.touch(ctx, obj, agent, at))
 
     def move(self, obj: str, position: Sequence[float]) -> Done:
         """``object set OBJ --pos X,Y,Z``: the object is somewhere else now."""
         pos = ",".join(repr(float(v)) for v in position)
-        with self._call(f"object set {obj} --pos {pos}") as ctx:
-            return things.set_object(ctx, obj, pos=pos)
+        return self._do(f"object set {obj} --pos {pos}", lambda ctx: things.set_object(ctx, obj, pos=pos))
 
     def add_agent(self, name: str) -> Done:
         """``agent add NAME``."""
-        with self._call(f"agent add {name}") as ctx:
-            return things.add_agent(ctx, name)
+        return self._do(f"agent add {name}", lambda ctx: things.add_agent(ctx, name))
 
-    def add_object(self, name: str, color: str | None = None, position: Sequence[float] | None = None,
-                   categories: Sequence[str] = ()) -> Done:
+    def add_object(
+        self,
+        name: str,
+        color: str | None = None,
+        position: Sequence[float] | None = None,
+        categories: Sequence[str] = (),
+    ) -> Done:
         """``object add NAME [--color C] [--pos X,Y,Z] [--category K]``."""
         pos = None if position is None else ",".join(repr(float(v)) for v in position)
-        with self._call(f"object add {name}") as ctx:
-            return things.add_object(ctx, name, color, pos, categories)
+        return self._do(
+            f"object add {name}", lambda ctx: things.add_object(ctx, name, color, pos, categories)
+        )
 
     def add_area(self, name: str, box: Sequence[float]) -> Done:
         """``area add NAME --box X0,Y0,X1,Y1``."""
-        with self._call(f"area add {name}") as ctx:
-            return things.add_area(ctx, name, ",".join(repr(float(v)) for v in box))
+        return self._do(
+            f"area add {name}", lambda ctx: things.add_area(ctx, name, ",".join(repr(float(v)) for v in box))
+        )
 
     def reset(self, what: str) -> Done:
         """``reset perms|rules|claims|all --yes``."""
-        with self._call(f"reset {what} --yes") as ctx:
-            return admin.reset(ctx, what, yes=True)
+        return self._do(f"reset {what} --yes", lambda ctx: admin.reset(ctx, what, yes=True))
 
     # -- queries ---------------------------------------------------------------------------------
     def check(self, action: str, obj: str, *, record: bool = True) -> CheckReport:
         """``check ACTION OBJ``: the decision, with what decided it (``.forbidden``, ``.data``);
         ``record`` makes it a turn of the conversation, as the command does ("why not?")."""
-        with self._call(f"check {action} {obj}") as ctx:
-            return decide.check(ctx, action, obj, record=record)
+        return self._do(f"check {action} {obj}", lambda ctx: decide.check(ctx, action, obj, record=record))
 
     def explain(self, action: str | None = None, obj: str | None = None) -> Explanation:
         """``explain [ACTION OBJ]``: why, in words (``.text``) and data."""
-        with self._call("explain") as ctx:
-            return explain.explain(ctx, action, obj)
+        return self._do("explain", lambda ctx: explain.explain(ctx, action, obj))
 
     def owners(self, obj: str) -> dict[str, Any]:
         """``owners OBJ``: every agent's beliefs about the object, likeliest first."""
-        with self._call(f"owners {obj}") as ctx:
-            return query.owners(ctx, obj)
+        return self._do(f"owners {obj}", lambda ctx: query.owners(ctx, obj))
 
     def rules(self) -> list[dict[str, Any]]:
         """``rules list``: every rule with its origin and accuracy."""
-        with self._call("rules list") as ctx:
-            return query.list_rules(ctx)
+        return self._do("rules list", lambda ctx: query.list_rules(ctx))
 
-    def run(self, task: str, *, physics: bool = False, instructor: str = "oracle",
-            seed: int = 0) -> RunReport:
+    def run(
+        self, task: str, *, physics: bool = False, instructor: str = "oracle", seed: int = 0
+    ) -> RunReport:
         """``run TASK``: play a task on the store's world (kinematically unless ``physics``)."""
         from ownctl.app.run import run
 
-        with self._call(f"run {task}") as ctx:
-            return run(ctx, task, instructor=instructor, physics=physics, seed=seed)
+        return self._do(
+            f"run {task}", lambda ctx: run(ctx, task, instructor=instructor, physics=physics, seed=seed)
+        )

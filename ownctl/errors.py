@@ -53,6 +53,11 @@ class StoreError(OwnctlError):
     """A missing, foreign, unreadable or too-new store."""
 
 
+class StoreBusy(StoreError):
+    """Another writer held the store too long, or the database chose this transaction as a deadlock
+    or serialisation victim; nothing was written, and the whole instruction may be tried again."""
+
+
 class ScenarioFailed(OwnctlError):
     """A scenario expectation or a task step failed (exit code 4)."""
 

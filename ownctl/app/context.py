@@ -12,14 +12,26 @@ explicitly: nothing here reads the environment or the clock.
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import random
+import time
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
+
+from ownctl.errors import StoreBusy
 
 if TYPE_CHECKING:
     from ownctl.store.engine import Store
     from ownctl.store.repo import Tx
+
+T = TypeVar("T")
+
+#: A use case that failed because another writer held the store is tried again this many times,
+#: waiting about 0.05 s, 0.1 s, 0.2 s, ... (with jitter, at most MAX_WAIT each) before giving up.
+ATTEMPTS = 8
+FIRST_WAIT = 0.05
+MAX_WAIT = 2.0
 
 
 @dataclass(frozen=True)
@@ -84,6 +96,27 @@ class AppContext:
                 yield tx
             finally:
                 self._open = None
+
+    def retrying(self, use_case: Callable[[], T], attempts: int = ATTEMPTS,
+                 sleep: Callable[[float], None] = time.sleep) -> T:
+        """Run ``use_case`` (a whole instruction: each try is its own transaction, and a failed try
+        wrote nothing); when another writer made it fail (:class:`StoreBusy`), wait with jittered
+        exponential backoff and try again, at most ``attempts`` times, then give up with one line.
+
+        Inside an open transaction the caller's outermost instruction retries, not this one.
+        """
+        if self._open is not None:
+            return use_case()
+        wait = FIRST_WAIT
+        for attempt in range(1, attempts + 1):
+            try:
+                return use_case()
+            except StoreBusy as exc:
+                if attempt == attempts:
+                    raise StoreBusy(f"{exc} (gave up after {attempts} tries; nothing was written)") from None
+            sleep(wait * (0.5 + random.random()))
+            wait = min(MAX_WAIT, wait * 2)
+        raise AssertionError("unreachable")
 
     def close(self) -> None:
         """Close the store if it was opened."""

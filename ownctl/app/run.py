@@ -238,11 +238,20 @@ def run(
     def persist(record: StepRecord) -> None:
         payload = {"op": "run.step", "task": chosen.name, "object": record.name, "outcome": record.outcome,
                    "reason": record.reason, "mistake": record.mistake}
-        with ctx.write(payload) as tx:
-            stored.save(tx)
-            refusal = None if record.allowed else {"action": chosen.action, "object": record.name,
-                                                   "steps": list(record.forbidding), "at": ctx.now}
-            tx.meta.converse(target=record.name, action=chosen.action, refusal=refusal)
+        refusal = None if record.allowed else {"action": chosen.action, "object": record.name,
+                                               "steps": list(record.forbidding), "at": ctx.now}
+
+        def write() -> None:
+            before = stored.base
+            try:
+                with ctx.write(payload) as tx:
+                    stored.save(tx)
+                    tx.meta.converse(target=record.name, action=chosen.action, refusal=refusal)
+            except BaseException:
+                stored.base = before  # nothing was written: the next try compares with the store again
+                raise
+
+        ctx.retrying(write)
         if on_step is not None:
             on_step(record)
 

@@ -24,13 +24,19 @@ from sqlalchemy.exc import ArgumentError, DBAPIError, NoSuchModuleError
 from sqlalchemy.orm import Session
 from sqlalchemy.pool import StaticPool
 
-from ownctl.errors import StoreError
+from ownctl.errors import BadValue, StoreBusy, StoreError
 from ownctl.store import migrate
 from ownctl.store.models import APPLICATION
 from ownctl.store.repo import Tx
 
 SQLITE_MAGIC = b"SQLite format 3\x00"
 BUSY_TIMEOUT_MS = 5000
+#: PostgreSQL: writers take this transaction-scoped advisory lock first, so that writes are
+#: serialised in one order (no deadlock, no lost update) as SQLite's BEGIN IMMEDIATE does.
+WRITE_LOCK_KEY = 0x6F776E63  # "ownc"
+LOCK_TIMEOUT_MS = BUSY_TIMEOUT_MS
+#: SQLSTATEs of failures that another writer caused: deadlock, serialisation, lock wait timeout.
+TRANSIENT_SQLSTATES = ("40P01", "40001", "55P03")
 
 
 @dataclass(frozen=True)
@@ -106,7 +112,31 @@ def _make_engine(location: Location, foreign_keys: bool = True) -> Engine:
             write = conn.get_execution_options().get("ownctl_write", False)
             conn.exec_driver_sql("BEGIN IMMEDIATE" if write else "BEGIN")
 
+    elif engine.dialect.name == "postgresql":
+
+        @event.listens_for(engine, "begin")
+        def _on_pg_begin(conn: Connection) -> None:
+            if conn.get_execution_options().get("ownctl_write", False):
+                conn.exec_driver_sql(f"SET LOCAL lock_timeout = {LOCK_TIMEOUT_MS}")
+                conn.exec_driver_sql(f"SELECT pg_advisory_xact_lock({WRITE_LOCK_KEY})")
+
     return engine
+
+
+def database_error(exc: DBAPIError, location: Location) -> StoreError:
+    """The one-line user error for a database failure a user can cause; StoreBusy when trying
+    again may succeed (a busy or locked store, a deadlock or serialisation victim)."""
+    orig = exc.orig
+    state = getattr(orig, "sqlstate", None) or getattr(getattr(orig, "diag", None), "sqlstate", None)
+    message = str(orig).strip().splitlines()[0] if str(orig).strip() else type(orig).__name__
+    lowered = message.lower()
+    if state in TRANSIENT_SQLSTATES or "database is locked" in lowered or "database is busy" in lowered:
+        return StoreBusy(f"store {location.display} is busy: another writer holds it ({message})")
+    if "readonly" in lowered or "read-only" in lowered or state == "25006":
+        return StoreError(f"store {location.display} is read-only: {message}")
+    if state == "22001":
+        return BadValue(f"a value is too long for store {location.display}: {message}")
+    return StoreError(f"the database of store {location.display} refused the change: {message}")
 
 
 def _probe_file(location: Location) -> str:
@@ -168,12 +198,15 @@ class Store:
     @contextmanager
     def transaction(self, write: bool = True) -> Iterator[Tx]:
         """One SQL transaction as a :class:`Tx`; committed on success, rolled back on any exception."""
-        with self.engine.connect() as conn:
-            if write:
-                conn.execution_options(ownctl_write=True)
-            with Session(bind=conn, expire_on_commit=False, autoflush=True) as session:
-                with session.begin():
-                    yield Tx(session)
+        try:
+            with self.engine.connect() as conn:
+                if write:
+                    conn.execution_options(ownctl_write=True)
+                with Session(bind=conn, expire_on_commit=False, autoflush=True) as session:
+                    with session.begin():
+                        yield Tx(session)
+        except DBAPIError as exc:
+            raise database_error(exc, self.location) from None
 
     def revision(self) -> str | None:
         """The schema revision recorded in the store."""
