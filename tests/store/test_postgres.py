@@ -13,6 +13,7 @@ from pathlib import Path
 
 import pytest
 
+from ownctl.store.migrate import head_revision
 from tests.cli.conftest import Ownctl
 
 SERVER = os.environ.get("OWNCTL_TEST_PG")
@@ -41,7 +42,7 @@ def pg_store() -> Iterator[Ownctl]:
 
 def test_a_robot_learns_on_postgresql(pg_store: Ownctl) -> None:
     pg_store("init")
-    assert "0001" in pg_store("db", "current").stdout
+    assert head_revision() in pg_store("db", "current").stdout
     report = pg_store.json("run", "trashAll", "--kinematic", "--seed", "2")
     assert report["loaded_world"] and report["violations"] == []
     texts = {r["text"] for r in pg_store.json("rules", "list")}
