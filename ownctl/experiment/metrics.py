@@ -54,6 +54,6 @@ def ci95(values: np.ndarray) -> float:
     n = len(values)
     if n < 2:
         return 0.0
-    from scipy.stats import t as student_t
+    from ownctl.experiment.student import t_quantile
 
-    return float(student_t.ppf(0.975, n - 1) * values.std(ddof=1) / np.sqrt(n))
+    return float(t_quantile(0.975, n - 1) * values.std(ddof=1) / np.sqrt(n))
