@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Any
 
 from ownctl.app.context import AppContext
@@ -172,8 +172,9 @@ def teach_utterance(mind: Mind, hit: Interrupt, attempt: Attempt) -> bool:
     return any(stops)
 
 
-def _ensure_world(ctx: AppContext, seed: int, layout_seed: int | None) -> bool:
-    """Load the paper's blocks world into an empty store, or a new layout beside the old one."""
+def _new_world(ctx: AppContext, seed: int, layout_seed: int | None) -> tuple[World | None, bool]:
+    """The world a run adds (the paper's blocks world for an empty store, a new layout beside the old
+    objects for ``layout_seed``), or None; and whether the store was empty. Nothing is written."""
     import numpy as np
 
     from ownctl.world.generator import paper_blocks_world
@@ -184,7 +185,7 @@ def _ensure_world(ctx: AppContext, seed: int, layout_seed: int | None) -> bool:
         norms = tuple(tx.knowledge.truth_norms())
         base_seed = tx.meta.settings().get("world.seed")
     if not empty and layout_seed is None:
-        return False
+        return None, False
     rng = np.random.default_rng(seed if layout_seed is None else layout_seed)
     if empty:
         world = paper_blocks_world(rng)
@@ -194,11 +195,16 @@ def _ensure_world(ctx: AppContext, seed: int, layout_seed: int | None) -> bool:
         places = None if base_seed is None else np.random.default_rng(int(base_seed))
         world = paper_blocks_world(rng, agents=agents or ("agent1", "agent2", "agent3"), norms=norms,
                                    prefix=f"l{layout_seed}-block", places=places)
-    with ctx.write({"op": "world.generate", "seed": seed, "layout_seed": layout_seed}) as tx:
-        store_world(tx, world, ctx.now, skip_existing_areas=True)
-        if empty:
-            tx.meta.set_setting("world.seed", seed)
-    return True
+    return world, empty
+
+
+def _joined(old: World, new: World) -> World:
+    """The store's world with ``new``'s objects and areas after its own (as storing would order them)."""
+    areas = {a.name: a for a in (*old.areas, *new.areas)}
+    agents = tuple(sorted({*old.agents, *new.agents}))
+    return replace(old, agents=agents, objects=(*old.objects, *new.objects),
+                   areas=tuple(areas[n] for n in sorted(areas)), norms=old.norms or new.norms,
+                   owners={**old.owners, **new.owners})
 
 
 def run(
@@ -218,22 +224,35 @@ def run(
     """Play ``task`` on the store's world; persist every object's attempt as it happens."""
     check_options(task, instructor, arm, grasp, render)
     chosen = get_task(task)
-    loaded = _ensure_world(ctx, seed, layout_seed)
-    world = current_world(ctx)
+    fresh, empty = _new_world(ctx, seed, layout_seed)
+    world = current_world(ctx) if fresh is None else _joined(current_world(ctx), fresh)
     from ownctl.experiment.oracle import OracleInstructor
     from ownctl.experiment.task import SilentInstructor
 
-    with ctx.read() as tx:
-        stored = load_mind(tx, ctx.now)
-    mind = stored.mind
-    base: Instructor = OracleInstructor(world) if instructor == "oracle" else SilentInstructor()
-    teacher = Interrupting(base, interrupts, teach_utterance) if interrupts else base
+    # the scene is built (every block placed) before anything is written: a layout that cannot be
+    # placed leaves the store as it was
     if physics:
         executor: Any = PhysicsExecutor(world, seed, arm, grasp, render)
     else:
         from ownctl.experiment.kinematic import KinematicExecutor
 
         executor = KinematicExecutor(world)
+    if fresh is not None:
+        try:
+            with ctx.write({"op": "world.generate", "seed": seed, "layout_seed": layout_seed}) as tx:
+                store_world(tx, fresh, ctx.now, skip_existing_areas=True)
+                if empty:
+                    tx.meta.set_setting("world.seed", seed)
+        except BaseException:
+            if physics:
+                executor.world.close()
+            raise
+        world = current_world(ctx)
+    with ctx.read() as tx:
+        stored = load_mind(tx, ctx.now)
+    mind = stored.mind
+    base: Instructor = OracleInstructor(world) if instructor == "oracle" else SilentInstructor()
+    teacher = Interrupting(base, interrupts, teach_utterance) if interrupts else base
 
     def persist(record: StepRecord) -> None:
         payload = {"op": "run.step", "task": chosen.name, "object": record.name, "outcome": record.outcome,
@@ -256,12 +275,24 @@ def run(
             on_step(record)
 
     start = time.perf_counter()
+    done: list[str] = []
+
+    def saved(record: StepRecord) -> None:
+        persist(record)
+        done.append(record.name)
+
     try:
-        report = run_task(mind, world, chosen, executor, teacher, on_step=persist)
+        report = run_task(mind, world, chosen, executor, teacher, on_step=saved)
+    except OwnctlError as exc:
+        kept = (f"the {len(done)} object{'s' if len(done) != 1 else ''} attempted before were saved, "
+                "each in its own transaction" if done else "nothing of the run was saved")
+        stopped = OwnctlError(f"{exc} (the run stopped; {kept})")
+        stopped.exit_code = exc.exit_code
+        raise stopped from None
     finally:
         if physics:
             executor.finish()
     wall = time.perf_counter() - start
     sim_seconds = executor.sim_time if physics else 0.0
     failed = tuple(executor.failed) if physics else ()
-    return RunReport(report, sim_seconds, wall, failed, loaded)
+    return RunReport(report, sim_seconds, wall, failed, fresh is not None)
