@@ -8,9 +8,10 @@ from typing import Annotated
 import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
+from ownctl.cli.help import Group
 
-db = typer.Typer(help="The store's location and schema revision.", no_args_is_help=True)
-config = typer.Typer(help="Settings: thresholds, trust, switches.", no_args_is_help=True)
+db = Group(help="The store's location and schema revision.")
+config = Group(help="Settings: thresholds, trust, switches.")
 
 
 class Frozen(StrEnum):

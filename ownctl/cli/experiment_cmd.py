@@ -14,15 +14,14 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt
+from ownctl.cli.help import Group
 
 if TYPE_CHECKING:
     from ownctl.experiment.runner import ExperimentResult
     from ownctl.experiment.summary import Cell
 
-experiment_app = typer.Typer(
-    help="Run the paper's experiments (Tables 1-3) in memory and compare with its published values.",
-    no_args_is_help=True,
-)
+experiment_app = Group(
+    help="Run the paper's experiments (Tables 1-3) in memory and compare with its published values.")
 
 TrialsOpt = Annotated[int, typer.Option("--trials", "-n", help="Trials per condition.")]
 SeedOpt = Annotated[int, typer.Option("--seed", help="Seed; trial t of condition c uses [seed, c, t].")]

@@ -7,12 +7,13 @@ from typing import TYPE_CHECKING, Annotated
 import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
+from ownctl.cli.help import Group
 from ownctl.errors import RuleSyntaxError
 
 if TYPE_CHECKING:
     from ownctl.app.context import Done
 
-claims = typer.Typer(help="Ownership claims.", no_args_is_help=True)
+claims = Group(help="Ownership claims.")
 
 SpeakerOpt = Annotated[str | None, typer.Option("--as", help="Who says it (kept with the instruction).")]
 Words = Annotated[list[str] | None, typer.Argument(help="'on OBJECT', or 'if LITERAL [and LITERAL]...'.")]

@@ -7,9 +7,10 @@ from typing import Annotated
 import typer
 
 from ownctl.cli.common import EXIT_FORBIDDEN, JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.help import Group
 
-rules = typer.Typer(help="The forbid rules (given or learned).", no_args_is_help=True)
-perms = typer.Typer(help="Object-specific permissions.", no_args_is_help=True)
+rules = Group(help="The forbid rules (given or learned).")
+perms = Group(help="Object-specific permissions.")
 
 
 

@@ -8,15 +8,14 @@ from typing import Annotated
 import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.help import Group
 
-world = typer.Typer(
-    help="Load and export whole worlds (TOML files of DESIGN section 11).", no_args_is_help=True
-)
-agent = typer.Typer(help="Agents: the possible owners.", no_args_is_help=True)
-obj = typer.Typer(
-    help="Objects and their percepts (colour, position, categories, interactions).", no_args_is_help=True
-)
-area = typer.Typer(help="Named box areas on the table plane.", no_args_is_help=True)
+world = Group(
+    help="Load and export whole worlds (TOML files of DESIGN section 11).")
+agent = Group(help="Agents: the possible owners.")
+obj = Group(
+    help="Objects and their percepts (colour, position, categories, interactions).")
+area = Group(help="Named box areas on the table plane.")
 
 ColorOpt = Annotated[str | None, typer.Option("--color", help="Colour name ('none' clears it).")]
 PosOpt = Annotated[str | None, typer.Option("--pos", help="Position X,Y[,Z] in metres ('none' clears it).")]

@@ -83,6 +83,12 @@ USAGE_ERRORS: list[tuple[str, ...]] = [
     ("check", "trash", "wallet", "--bogus"),
     ("owners",),
     ("rules", "remove", "one"),
+    ("claim", "wallet", "alexis", "--p", "0x1"),
+    ("world", "load", "x.toml", "--seed", "abc"),
+    ("log", "--limit", "1.5"),
+    ("object",),
+    (),
+    ("explain", "trash"),
 ]
 
 
@@ -123,11 +129,20 @@ def test_unknown_names_list_the_valid_ones(world: Ownctl) -> None:
     assert "trash" in world.json("check", "thrash", "wallet", code=1)["valid"]
 
 
-@pytest.mark.parametrize("args", USAGE_ERRORS, ids=lambda a: " ".join(a))
-def test_usage_error_exits_2_and_writes_nothing(world: Ownctl, args: tuple[str, ...]) -> None:
+@pytest.mark.parametrize("args", USAGE_ERRORS, ids=lambda a: " ".join(a) or "nothing")
+def test_usage_error_is_one_line_exit_2_and_writes_nothing(world: Ownctl, args: tuple[str, ...]) -> None:
     before = world.digest()
-    world(*args, code=2)
+    result = world(*args, code=2)
+    assert result.stderr.startswith("ownctl: ") and result.stderr.count("\n") == 1, result.stderr
+    assert result.stderr.rstrip().endswith("--help)")  # and says where the help is
     assert world.digest() == before
+
+
+def test_a_bad_number_is_named_with_what_it_should_be(world: Ownctl) -> None:
+    assert world("claim", "wallet", "alexis", "--p", "0x1", code=2).stderr == (
+        "ownctl: invalid value for --p: '0x1' is not a number (see: ownctl claim --help)\n")
+    assert "'abc' is not a whole number" in world("log", "-n", "abc", code=2).stderr
+    assert "commands: add, set, list, show, remove, touch" in world("object", code=2).stderr
 
 
 def test_bad_world_file_names_file_and_key(world: Ownctl, tmp_path: Path) -> None:
