@@ -14,6 +14,7 @@ from ownctl.app.context import AppContext, Done
 from ownctl.app.learning import reinfer
 from ownctl.app.settings import FLAGS, check_key, effective, parse_value
 from ownctl.errors import OwnctlError
+from ownctl.humanize import plural
 
 RESETS = ("perms", "rules", "claims", "all")
 
@@ -123,5 +124,5 @@ def reset(ctx: AppContext, what: str, yes: bool) -> Done:
             reinfer(tx, ctx.now)  # posteriors follow the remaining permissions and rules
         if what == "all":
             tx.clear("context")
-    listing = ", ".join(f"{n} {k}" for k, n in counts.items())
+    listing = ", ".join(plural(n, k.removesuffix("s")) for k, n in counts.items())
     return Done(f"reset {what}: forgot {listing}", {"reset": what, **counts})

@@ -14,6 +14,7 @@ from ownctl.app.beliefs import after_claims
 from ownctl.app.context import AppContext, Done
 from ownctl.app.learning import reinfer, repredict
 from ownctl.errors import BadValue, OwnctlError
+from ownctl.humanize import iso
 from ownctl.logic.names import check_name
 from ownctl.logic.rules import parse_rule
 
@@ -194,7 +195,7 @@ def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Don
         row, who = tx.object(obj), tx.agent(agent)
         tx.touch(row.id, who.id, time)
         after_claims(tx, [agent], ctx.now)  # recency is a percept of prediction
-    return Done(f"{agent} touched {obj} at {time:g}", {"object": obj, "agent": agent, "time": time})
+    return Done(f"{agent} touched {obj} at {iso(time)}", {"object": obj, "agent": agent, "time": time})
 
 
 # -- areas --------------------------------------------------------------------------------------

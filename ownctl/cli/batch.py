@@ -22,6 +22,7 @@ import typer
 from ownctl.cli.common import EXIT_FORBIDDEN, JsonOpt, QuietOpt, State, emit
 from ownctl.cli.lines import run_words
 from ownctl.errors import OwnctlError
+from ownctl.humanize import plural
 
 
 def _lines(file: str) -> list[str]:
@@ -91,7 +92,7 @@ def batch(
             raise typer.Exit(done.code)
         ran += 1
     summary = {"file": name, "ran": ran, **({"lines": results} if json_out else {})}
-    emit(summary, json_out, quiet, f"batch: ran {ran} instructions from {name}")
+    emit(summary, json_out, quiet, f"batch: ran {plural(ran, 'instruction')} from {name}")
 
 
 def _parsed(text: str) -> object:

@@ -11,7 +11,7 @@ import math
 import os
 import shlex
 import time
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -96,9 +96,12 @@ def app_ctx(ctx: typer.Context) -> AppContext:
 
 
 def emit(data: Any, json_out: bool, quiet: bool, human: str | Callable[[], None]) -> None:
-    """Print ``data`` as JSON, or the human form (a line, or a function that prints), or nothing."""
+    """Print ``data`` as JSON (times also as ISO 8601 strings), or the human form (a line, or a
+    function that prints), or nothing."""
     if json_out:
-        typer.echo(json.dumps(data, ensure_ascii=False))
+        from ownctl.cli.render import with_iso
+
+        typer.echo(json.dumps(with_iso(data), ensure_ascii=False))
     elif not quiet:
         if callable(human):
             human()
@@ -106,18 +109,28 @@ def emit(data: Any, json_out: bool, quiet: bool, human: str | Callable[[], None]
             typer.echo(human)
 
 
-def table(title: str | None, columns: Sequence[str], rows: Sequence[Sequence[Any]]) -> Callable[[], None]:
-    """A function printing a rich table (``None`` cells show as blank)."""
+def table(title: str | None, columns: Sequence[str], rows: Sequence[Sequence[Any]],
+          whole: Collection[str] = ()) -> Callable[[], None]:
+    """A function printing a rich table (``None`` cells show as blank, text is never markup).
+
+    Cells of the ``whole`` columns (times) are kept on one line, never cut short.
+    """
 
     def show() -> None:
         from rich.console import Console
+        from rich.markup import escape
         from rich.table import Table
 
+        cells = [["" if v is None else fmt(v) for v in row] for row in rows]
         grid = Table(title=title, show_lines=False)
-        for column in columns:
-            grid.add_column(column)
-        for row in rows:
-            grid.add_row(*("" if v is None else fmt(v) for v in row))
+        for i, column in enumerate(columns):
+            if column in whole:
+                widest = max([len(column), *(len(r[i]) for r in cells)])
+                grid.add_column(column, no_wrap=True, min_width=widest)
+            else:
+                grid.add_column(column)
+        for row in cells:
+            grid.add_row(*(escape(cell) for cell in row))
         Console().print(grid)
 
     return show

@@ -15,6 +15,7 @@ import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt
 from ownctl.cli.help import Group
+from ownctl.humanize import plural
 
 if TYPE_CHECKING:
     from ownctl.experiment.runner import ExperimentResult
@@ -191,5 +192,5 @@ def render(result: ExperimentResult) -> None:
     for note in exp.metrics:
         console.print(f"[dim]* {note}[/dim]")
     n = len(result.conditions)
-    console.print(f"{result.trials} trials x {n} condition{'s' if n != 1 else ''} on {result.world} "
+    console.print(f"{plural(result.trials, 'trial')} x {plural(n, 'condition')} on {result.world} "
                   f"(seed {result.seed}, jobs {result.jobs}) in {result.seconds:.2f} s")

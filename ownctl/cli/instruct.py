@@ -8,6 +8,7 @@ import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
 from ownctl.cli.help import Group
+from ownctl.cli.render import when
 from ownctl.errors import RuleSyntaxError
 
 if TYPE_CHECKING:
@@ -47,8 +48,9 @@ def claims_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt =
     from ownctl.app import query
 
     rows = query.list_claims(app_ctx(ctx))
-    cells = [[r["object"], r["agent"], r["p"], r["speaker"], r["trust"], r["time"]] for r in rows]
-    emit(rows, json_out, quiet, table("claims", ["object", "agent", "p", "speaker", "trust", "time"], cells))
+    cells = [[r["object"], r["agent"], r["p"], r["speaker"], r["trust"], when(r["time"])] for r in rows]
+    emit(rows, json_out, quiet, table("claims", ["object", "agent", "p", "speaker", "trust", "time"], cells,
+                                      whole={"time"}))
 
 
 def _instruct(

@@ -8,6 +8,7 @@ import typer
 
 from ownctl.cli.common import EXIT_FORBIDDEN, JsonOpt, QuietOpt, app_ctx, emit, fmt, table
 from ownctl.cli.help import Group
+from ownctl.cli.render import when
 
 rules = Group(help="The forbid rules (given or learned).")
 perms = Group(help="Object-specific permissions.")
@@ -150,16 +151,32 @@ def perms_remove(
 
 def log(
     ctx: typer.Context,
-    limit: Annotated[int | None, typer.Option("--limit", "-n", help="Only the last N instructions.")] = None,
+    limit: Annotated[
+        int | None, typer.Option("--limit", "-n", metavar="N", help="Only the last N instructions.")
+    ] = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Show the event log: every instruction, who gave it, when and from which interface."""
+    """Show the event log: each instruction, who gave it, when and how.
+
+    One row per instruction (a task run's steps share their run's row); --json lists every event.
+    """
     from ownctl.app import query
 
-    rows = query.events(app_ctx(ctx), limit)
-    cells = [[r["id"], r["time"], r["actor"], r["interface"], r["command"]] for r in rows]
-    emit(rows, json_out, quiet, table("log", ["id", "time", "actor", "via", "instruction"], cells))
+    rows = query.instructions(app_ctx(ctx), limit)
+
+    def human() -> None:  # one line per instruction, like a version-control log: nothing is cut
+        for r in rows:
+            summary = f"  ({r['summary']})" if r["summary"] else ""
+            typer.echo(f"{_ids(r):>5}  {when(r['time'])}  {r['actor'] or '-':<8} {r['interface']:<8} "
+                       f"{r['command']}{summary}")
+
+    emit([e for r in rows for e in r["events"]], json_out, quiet, human)
+
+
+def _ids(row: dict) -> str:
+    """``7``, or ``3-22`` for a row of several events."""
+    return str(row["first"]) if row["first"] == row["last"] else f"{row['first']}-{row['last']}"
 
 
 __all__ = ["check", "fmt", "log", "owners", "perms", "rules"]

@@ -7,8 +7,10 @@ from typing import Annotated, Any
 import typer
 
 from ownctl.cli.common import EXIT_FAILED, JsonOpt, QuietOpt, app_ctx, emit
+from ownctl.humanize import plural
 
-MARKS = {"delivered": "[green]moved[/]", "skipped": "[yellow]left[/]", "done": "[dim]done[/]"}
+#: how the live table shows each fate (the words the summary uses too)
+MARKS = {"delivered": "[green]delivered[/]", "skipped": "[yellow]left[/]", "done": "[dim]done[/]"}
 
 
 def run(
@@ -62,7 +64,8 @@ def run(
         rtf = f", {data['real_time_factor']:.0f}x real time" if data["sim_seconds"] else ""
         typer.echo(
             f"{task}: {len(data['delivered'])} delivered, {len(data['skipped'])} left, "
-            f"{data['mistakes']} mistakes, {len(data['violations'])} norm violations executed\n"
+            f"{plural(data['mistakes'], 'mistake')}, "
+            f"{plural(len(data['violations']), 'norm violation')} executed\n"
             f"rules ({', '.join(rule['actions'])}): accuracy {rule['accuracy']:.3f}, F1 {rule['f1']:.3f}; "
             f"ownership: accuracy {own['accuracy']:.3f}, F1 {own['f1']:.3f}\n"
             f"sim {data['sim_seconds']:.1f} s, wall {data['wall_seconds']:.2f} s{rtf}"

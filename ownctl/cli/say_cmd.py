@@ -38,9 +38,10 @@ def say(
     report = talk.say(app_ctx(ctx), utterance, speaker, about, physics=physics)
 
     def human() -> None:
-        for result in report.results:
-            typer.echo(f"  {result['instruction']:<40} {result['message']}")
-        typer.echo(f"{'robot'}: {report.reply}")
+        for result in report.results:  # a result the reply already says (an explanation) is not repeated
+            said = bool(result["message"]) and result["message"] in report.reply
+            typer.echo(f"  {result['instruction']:<40} {'' if said else result['message']}".rstrip())
+        typer.echo(f"robot: {report.reply}")
 
     emit(report.data, json_out, quiet, human)
     if report.run is not None and not report.run.ok:

@@ -9,6 +9,7 @@ import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table
 from ownctl.cli.help import Group
+from ownctl.cli.render import when
 
 world = Group(
     help="Load and export whole worlds (TOML files of DESIGN section 11).")
@@ -129,17 +130,27 @@ def object_set(
 
 @obj.command("list")
 def object_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """List the objects and their percepts (interaction times are absolute store times)."""
+    """List the objects and their percepts (with each agent's last touch)."""
     from ownctl.app import things
 
     rows = things.list_objects(app_ctx(ctx))
-    cells = [[r["name"], r["color"], r["position"], r["categories"], r["last_touch"]] for r in rows]
+    cells = [[r["name"], r["color"], r["position"], r["categories"], _last_touch(r["last_touch"])]
+             for r in rows]
     emit(
         rows,
         json_out,
         quiet,
-        table("objects", ["name", "colour", "position", "categories", "last touch"], cells),
+        table("objects", ["name", "colour", "position", "categories", "last touch"], cells,
+              whole={"last touch"}),
     )
+
+
+def _last_touch(touches: dict[str, float]) -> str | None:
+    """Who touched the object last, and when (``object show`` and --json list every agent's touch)."""
+    if not touches:
+        return None
+    agent = max(touches, key=lambda a: (touches[a], a))
+    return f"{agent} {when(touches[agent])}"
 
 
 @obj.command("show")
@@ -151,7 +162,7 @@ def object_show(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet:
 
     def human() -> None:
         for key in ("name", "color", "position", "categories", "last_touch"):
-            typer.echo(f"{key:11} {fmt(data[key]) if data[key] not in (None, [], {}) else '-'}")
+            typer.echo(f"{key:11} {fmt(when(data[key])) if data[key] not in (None, [], {}) else '-'}")
         for p in data["permissions"]:
             typer.echo(f"permission  {p['id']}: {p['action']} = {fmt(p['value'])}")
         table(None, ["agent", "p", "source"], [[o["agent"], o["p"], o["source"]] for o in data["owners"]])()
