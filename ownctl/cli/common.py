@@ -25,6 +25,9 @@ if TYPE_CHECKING:
 
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print exactly one JSON document on stdout.")]
 QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing but errors.")]
+ACTION_HELP = "An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
+ActionArg = Annotated[str, typer.Argument(metavar="ACTION", help=ACTION_HELP)]
+ObjArg = Annotated[str, typer.Argument(metavar="OBJ", help="The object.")]
 
 EXIT_FORBIDDEN = 3  # check (and a question) answered "forbidden", as grep answers "no match"
 EXIT_FAILED = 4  # a task step or a scenario expectation failed

@@ -42,7 +42,8 @@ def main(
             "--db",
             envvar="OWNCTL_DB",
             metavar="URL",
-            help="The store: any SQLAlchemy URL or a SQLite file path (default: the user data directory).",
+            help="The store: any SQLAlchemy URL or a SQLite file path (default: a file in the user data"
+            " directory; ownctl db path prints it).",
         ),
     ] = None,
     version: Annotated[

@@ -6,7 +6,7 @@ from typing import Annotated
 
 import typer
 
-from ownctl.cli.common import EXIT_FORBIDDEN, JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.common import EXIT_FORBIDDEN, ActionArg, JsonOpt, ObjArg, QuietOpt, app_ctx, emit, fmt, table
 from ownctl.cli.help import Group
 from ownctl.cli.render import when
 
@@ -17,17 +17,16 @@ perms = Group(help="Object-specific permissions.")
 
 def check(
     ctx: typer.Context,
-    action: Annotated[
-        str,
-        typer.Argument(
-            help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
-        ),
-    ],
-    obj: Annotated[str, typer.Argument(help="The object.")],
+    action: ActionArg,
+    obj: ObjArg,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Is ACTION permitted on OBJECT? Prints the decision and what decided it; exit 3 if forbidden."""
+    """Is ACTION permitted on OBJ? Exit 3 if forbidden.
+
+    Prints the decision, what decided it (a permission or the rules) and, for an action with
+    prerequisite steps, each step's decision.
+    """
     from ownctl.app import decide
 
     report = decide.check(app_ctx(ctx), action, obj)
@@ -58,19 +57,24 @@ def check(
 
 def owners(
     ctx: typer.Context,
-    obj: Annotated[str | None, typer.Argument(help="The object whose owners to show.")] = None,
+    obj: Annotated[str | None, typer.Argument(metavar="OBJ", help="The object whose owners to show.")] = None,
     agent: Annotated[
-        str | None, typer.Option("--agent", help="Instead: the objects this agent owns.")
+        str | None, typer.Option("--agent", metavar="AGENT", help="Instead: the objects this agent owns.")
     ] = None,
-    min_p: Annotated[float, typer.Option("--min", help="With --agent: the least probability listed.")] = 0.5,
+    min_p: Annotated[
+        float, typer.Option("--min", metavar="P", help="With --agent: the least probability listed.")
+    ] = 0.5,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Who probably owns OBJECT; or, with --agent, which objects AGENT probably owns."""
+    """Who probably owns OBJ, or which objects an agent owns.
+
+    Lists each agent's claim, prior and posterior and which of them the decisions use.
+    """
     from ownctl.app import query
 
     if (obj is None) == (agent is None):
-        raise typer.BadParameter("give either an OBJECT or --agent AGENT")
+        raise typer.BadParameter("give either an OBJ or --agent AGENT")
     if agent is not None:
         rows = query.owned_by(app_ctx(ctx), agent, min_p)
         emit(
@@ -94,7 +98,10 @@ def owners(
 
 @rules.command("list")
 def rules_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """List the rules in canonical text, with their soft accuracy on the stored permissions."""
+    """List the rules in canonical text, with their accuracy.
+
+    The accuracy is the rule's soft agreement with its action's stored permissions.
+    """
     from ownctl.app import query
 
     rows = query.list_rules(app_ctx(ctx))
@@ -119,7 +126,10 @@ def _provenance(prov: dict) -> str:
 
 @rules.command("remove")
 def rules_remove(
-    ctx: typer.Context, rule_id: int, json_out: JsonOpt = False, quiet: QuietOpt = False
+    ctx: typer.Context,
+    rule_id: Annotated[int, typer.Argument(metavar="ID", help="The rule's id (see rules list).")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
 ) -> None:
     """Forget one rule (by id, see rules list)."""
     from ownctl.app import query
@@ -140,7 +150,10 @@ def perms_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = 
 
 @perms.command("remove")
 def perms_remove(
-    ctx: typer.Context, perm_id: int, json_out: JsonOpt = False, quiet: QuietOpt = False
+    ctx: typer.Context,
+    perm_id: Annotated[int, typer.Argument(metavar="ID", help="The permission's id (see perms list).")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
 ) -> None:
     """Forget one permission (by id, see perms list)."""
     from ownctl.app import query
@@ -157,9 +170,10 @@ def log(
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Show the event log: each instruction, who gave it, when and how.
+    """Show the event log, one line per instruction.
 
-    One row per instruction (a task run's steps share their run's row); --json lists every event.
+    Each line says when, who (--as, or the robot for a task run), through which interface, and
+    the instruction as typed; a task run's steps share their run's line. --json lists every event.
     """
     from ownctl.app import query
 

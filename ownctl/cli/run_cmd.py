@@ -15,22 +15,35 @@ MARKS = {"delivered": "[green]delivered[/]", "skipped": "[yellow]left[/]", "done
 
 def run(
     ctx: typer.Context,
-    task: Annotated[str, typer.Argument(help="The task: trashAll or collectAll.")],
+    task: Annotated[str, typer.Argument(metavar="TASK", help="The task: trashAll or collectAll.")],
     instructor: Annotated[
-        str, typer.Option(help="oracle: a simulated human corrects mistakes from the world's truth; none.")
+        str,
+        typer.Option(metavar="oracle|none",
+                     help="oracle: a simulated human corrects mistakes from the world's truth; none."),
     ] = "oracle",
     physics: Annotated[bool, typer.Option("--physics/--kinematic", help="MuJoCo, or teleport.")] = True,
-    seed: Annotated[int, typer.Option(help="Seed of the blocks world loaded into an empty store.")] = 0,
+    seed: Annotated[
+        int, typer.Option(metavar="SEED", help="Seed of the blocks world loaded into an empty store.")
+    ] = 0,
     layout_seed: Annotated[
-        int | None, typer.Option(help="Add a new layout of the same world (same agents and true norms).")
+        int | None,
+        typer.Option(metavar="SEED", help="Add a new layout of the same world (same agents and true norms)."),
     ] = None,
-    arm: Annotated[str, typer.Option(help="auto (the nearer arm), left or right.")] = "auto",
-    grasp: Annotated[str, typer.Option(help="weld (fingers close, then hold) or friction.")] = "weld",
+    arm: Annotated[
+        str, typer.Option(metavar="auto|left|right", help="auto (the nearer arm), left or right.")
+    ] = "auto",
+    grasp: Annotated[
+        str, typer.Option(metavar="weld|friction", help="weld (fingers close, then hold) or friction.")
+    ] = "weld",
     render: Annotated[str | None, typer.Option(metavar="FILE", help="Write FILE.png or FILE.mp4.")] = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Play a task on the store's world, obeying (and learning) its norms; exit 4 if a step failed."""
+    """Play a task, obeying and learning the norms.
+
+    The task runs on the store's world; an empty store first receives the paper's blocks world.
+    Exit 4 if a step failed.
+    """
     from rich.console import Console
     from rich.live import Live
     from rich.table import Table

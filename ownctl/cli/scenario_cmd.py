@@ -17,7 +17,8 @@ if TYPE_CHECKING:
 
 
 scenario = Group(
-    help="Scripted scenarios: a world, steps (say, command, run) and expected outcomes (TOML).")
+    help="Play scripted scenarios and check their outcomes.\n\nA scenario is a world file with steps "
+    "(say, command, run) and what each step expects.")
 
 
 def _step_runner(root: Any) -> Callable[[AppContext, Step], tuple[int, str, str]]:
@@ -63,7 +64,7 @@ def _show_step(result: Any) -> None:
 @scenario.command("play")
 def play(
     ctx: typer.Context,
-    file: Annotated[str, typer.Argument(help="The scenario: a TOML world file with steps.")],
+    file: Annotated[str, typer.Argument(metavar="FILE", help="The scenario: a TOML world file with steps.")],
     physics: Annotated[
         bool, typer.Option("--physics", help="Run tasks in MuJoCo (default: kinematically, instantly).")
     ] = False,
@@ -77,10 +78,12 @@ def play(
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Play a scenario: load its world, play its steps, check every expectation; exit 4 if one fails.
+    """Play a scenario and check every expectation; exit 4 if one fails.
 
-    Plays on a temporary store unless --db is given, here or before the command (OWNCTL_DB alone is not used, so a scenario never writes into the everyday store by accident).
-    """  # noqa: E501
+    Loads the scenario's world, plays its steps (say, command, run) and checks what each step
+    expects. Plays on a temporary store unless --db is given, here or before the command
+    (OWNCTL_DB alone is not used, so a scenario never writes into the everyday store by accident).
+    """
     from ownctl.app.scenario import play_file
 
     state = ctx.find_root().obj
