@@ -172,8 +172,9 @@ def _param_name(param: Any) -> str:
     return param.metavar or (param.name or "value").upper()
 
 
-def usage_message(exc: typer.TyperException) -> str:
-    """A usage error (typer's copy of click's UsageError) as one line naming the bad value.
+def usage_message(exc: typer.TyperException) -> tuple[str, list[str]]:
+    """A usage error (typer's copy of click's UsageError) as one line naming the bad value, and the
+    valid values when there is a list of them.
 
     A value typer could not convert names the value and what it should be; a group run without
     a command, or with an unknown one, lists the commands; every message points to ``--help``.
@@ -194,11 +195,13 @@ def usage_message(exc: typer.TyperException) -> str:
         message = text[:1].lower() + text[1:]
     group = ctx.command if ctx is not None else None
     commands = getattr(group, "list_commands", None)
+    valid: list[str] = []
     if callable(commands) and message.startswith(("missing command", "no such command")):
-        message += f"; commands: {', '.join(commands(ctx))}"
+        valid = list(commands(ctx))
+        message += f"; commands: {', '.join(valid)}"
     if ctx is not None:
         message += f" (see: {ctx.command_path} --help)"
-    return message
+    return message, valid
 
 
 class OwnctlGroup(TyperGroup):
@@ -217,7 +220,10 @@ class OwnctlGroup(TyperGroup):
             result = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
             code = result if isinstance(result, int) and not isinstance(result, bool) else 0
         except typer.TyperException as exc:  # click's UsageError and its kin, in typer's copy of click
-            typer.echo(f"ownctl: {prefix}{usage_message(exc)}", err=True)
+            message, valid = usage_message(exc)
+            if "--json" in (args or ()):  # like every error: the document on stdout, the line on stderr
+                typer.echo(json.dumps({"error": message, "valid": valid}, ensure_ascii=False))
+            typer.echo(f"ownctl: {prefix}{message}", err=True)
             code = int(getattr(exc, "exit_code", 2))
         except typer.Abort:
             typer.echo(f"ownctl: {prefix}aborted", err=True)

@@ -142,6 +142,9 @@ def test_usage_error_is_one_line_exit_2_and_writes_nothing(world: Ownctl, args: 
     assert result.stderr.startswith("ownctl: ") and result.stderr.count("\n") == 1, result.stderr
     assert result.stderr.rstrip().endswith("--help)")  # and says where the help is
     assert world.digest() == before
+    as_json = world(*args, "--json", code=2)  # with --json, also the document on stdout
+    error = json.loads(as_json.stdout)
+    assert set(error) == {"error", "valid"} and as_json.stderr == f"ownctl: {error['error']}\n"
 
 
 def test_a_bad_number_is_named_with_what_it_should_be(world: Ownctl) -> None:
