@@ -32,13 +32,30 @@ def _build_wheel(tmp: Path) -> Path:
     return wheel
 
 
+def _venv_with_our_dependencies(venv: Path) -> Path:
+    """A plain venv that sees the running interpreter's installed packages (not this checkout).
+
+    ``--system-site-packages`` would show the *base* interpreter's site-packages, which lack the
+    dependencies when the tests themselves run in a venv. Instead the directories of ``sys.path``
+    that hold installed packages are listed in a ``.pth`` file: the wheel's dependencies resolve from
+    them, while the wheel itself, installed into the venv's own site-packages, comes first (the
+    checkout is left out, so its sources cannot stand in for the wheel's). Works inside a venv and
+    outside one, without network.
+    """
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    site = subprocess.run(
+        [str(venv / "bin" / "python"), "-c", "import sysconfig; print(sysconfig.get_path('purelib'))"],
+        capture_output=True, text=True, check=True,
+    ).stdout.strip()
+    dirs = [p for p in dict.fromkeys(sys.path) if p and Path(p).is_dir() and Path(p).resolve() != ROOT]
+    (Path(site) / "outer-site.pth").write_text("".join(f"{p}\n" for p in dirs), encoding="utf-8")
+    return venv
+
+
 @pytest.mark.slow
 def test_wheel_ships_migrations(tmp_path: Path) -> None:
     wheel = _build_wheel(tmp_path)
-    venv = tmp_path / "venv"
-    subprocess.run(
-        [sys.executable, "-m", "venv", "--system-site-packages", "--without-pip", str(venv)], check=True
-    )
+    venv = _venv_with_our_dependencies(tmp_path / "venv")
     python = venv / "bin" / "python"
     subprocess.run(
         [sys.executable, "-m", "pip", "--python", str(python), "install", "-q", "--no-deps", str(wheel)],

@@ -14,6 +14,7 @@ from ownctl.app.context import AppContext, Done
 from ownctl.app.mindstore import changing
 from ownctl.app.settings import FLAGS, check_key, effective, parse_value
 from ownctl.errors import OwnctlError
+from ownctl.humanize import plural
 from ownctl.mind import RESETS
 
 
@@ -108,5 +109,5 @@ def reset(ctx: AppContext, what: str, yes: bool) -> Done:
         counts = mind.reset(what)
         if what == "all":
             tx.meta.clear("context")
-    listing = ", ".join(f"{n} {k}" for k, n in counts.items())
+    listing = ", ".join(plural(n, k.removesuffix("s")) for k, n in counts.items())
     return Done(f"reset {what}: forgot {listing}", {"reset": what, **counts})

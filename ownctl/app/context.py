@@ -20,6 +20,7 @@ from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, TypeVar
 
 from ownctl.errors import StoreBusy
+from ownctl.logic.names import check_name
 
 if TYPE_CHECKING:
     from ownctl.store.engine import Store
@@ -81,8 +82,11 @@ class AppContext:
         """A write transaction whose first act is logging this instruction with ``payload``.
 
         ``payload`` None writes without logging (conversation state, which is not an instruction).
-        Inside an open write transaction this yields the same one, after logging into it.
+        Inside an open write transaction this yields the same one, after logging into it. A speaker
+        (``actor``) obeys the naming rule of agents, whatever the command and the backend.
         """
+        if actor is not None:
+            check_name("speaker", actor)
         if self._open is not None:
             if payload is not None:
                 self._open.meta.log(self.now, actor or self.actor, self.interface, self.command, payload)

@@ -7,7 +7,8 @@ comes from (a claim by whom and when, a percept-based prediction, the base rate,
 inference on top of one of those). For example::
 
     trash is forbidden on wallet: rule 3 'forbid trash if ownedBy agent1' holds with p=0.97
-    (>= 0.5). ownedBy(wallet, agent1) = 0.97 from inference on a claim by agent1 at t=1000 (p=1).
+    (>= 0.5). ownedBy(wallet, agent1) = 0.97 from inference on a claim by agent1 at 1970-01-01T00:16:40+00:00
+    (p=1).
 
 Explaining is a question about a decision, not a decision: the conversation is left as it was.
 """
@@ -18,6 +19,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ownctl.app.context import AppContext
+from ownctl.humanize import iso, plural
 from ownctl.logic.rules import ANY, Literal, parse_rule
 
 if TYPE_CHECKING:
@@ -35,7 +37,7 @@ class Explanation:
 
 
 def _when(time: float | None) -> str:
-    return "" if time is None else f" at t={time:.10g}"
+    return "" if time is None else f" at {iso(time)}"
 
 
 def _rule_origin(row: Any) -> str:
@@ -60,7 +62,7 @@ def _belief_origin(row: Any, claims: dict[int, int]) -> tuple[str, str]:
     elif row.prior_p is not None and row.prior_source == "prediction":
         n = claims.get(row.agent_id, 0)
         base = (f"a prediction from percepts (colour, position, recency; p={row.prior_p:.2g}, "
-                f"from {n} claim{'s' if n != 1 else ''} about this agent)")
+                f"from {plural(n, 'claim')} about this agent)")
     elif row.prior_p is not None:
         base = f"the base rate (too few claims about this agent to predict; p={row.prior_p:.2g})"
     else:

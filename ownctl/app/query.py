@@ -5,6 +5,7 @@ Beliefs shown as ``p`` are the decision beliefs of :func:`ownctl.app.beliefs.dec
 
 from __future__ import annotations
 
+from collections import Counter
 from typing import TYPE_CHECKING, Any
 
 from ownctl.app.beliefs import decision_belief
@@ -12,6 +13,7 @@ from ownctl.app.context import AppContext, Done
 from ownctl.app.mindstore import changing, load, rule_of
 from ownctl.app.settings import probability
 from ownctl.errors import OwnctlError
+from ownctl.humanize import plural
 
 if TYPE_CHECKING:
     from ownctl.store.repo import Tx
@@ -132,19 +134,69 @@ def remove_rule(ctx: AppContext, rule_id: int) -> Done:
     return Done(f"removed rule {rule_id}: {text}", {"id": rule_id, "text": text})
 
 
-def events(ctx: AppContext, limit: int | None = None) -> list[dict[str, Any]]:
-    """The last ``limit`` instructions of the event log, oldest first."""
+def instructions(ctx: AppContext, limit: int | None = None) -> list[dict[str, Any]]:
+    """The event log, one row per instruction, oldest first: the last ``limit`` instructions.
+
+    Consecutive events of one command line (same store time, actor, interface and command text:
+    a task run's steps, a world it generated) form one row ``{"first", "last", "time", "actor",
+    "interface", "command", "summary", "events"}``; ``events`` are the row's events as
+    :func:`events` lists them. A run's steps are the robot's doing, so a run without a speaker has
+    ``robot`` as its actor.
+    """
     if limit is not None and limit < 1:
         raise OwnctlError(f"--limit must be at least 1, got {limit}")
     with ctx.read() as tx:
-        return [
-            {
-                "id": e.id,
-                "time": e.time,
-                "actor": e.actor,
-                "interface": e.interface,
-                "command": e.command,
-                "payload": e.payload,
-            }
-            for e in tx.meta.events(limit)
-        ]
+        if limit is None:
+            return _group(tx.meta.events())
+        fetch = limit
+        while True:  # read back until the oldest row shown is known to be whole
+            rows = tx.meta.events(fetch)
+            groups = _group(rows)
+            if len(groups) > limit or len(rows) < fetch:
+                return groups[-limit:]
+            fetch *= 4
+
+
+def events(ctx: AppContext, limit: int | None = None) -> list[dict[str, Any]]:
+    """The events of the last ``limit`` instructions (see :func:`instructions`), oldest first."""
+    return [e for row in instructions(ctx, limit) for e in row["events"]]
+
+
+RUN_OPS = frozenset({"run.step", "world.generate"})  # what a task run logs
+
+
+def _group(rows: list[Any]) -> list[dict[str, Any]]:
+    groups: list[dict[str, Any]] = []
+    for e in rows:
+        event = {"id": e.id, "time": e.time, "actor": e.actor, "interface": e.interface,
+                 "command": e.command, "payload": e.payload}
+        last = groups[-1] if groups else None
+        if last is not None and all(last[k] == event[k] for k in ("time", "actor", "interface", "command")):
+            last["events"].append(event)
+            last["last"] = e.id
+        else:
+            groups.append({"first": e.id, "last": e.id, "time": e.time, "actor": e.actor,
+                           "interface": e.interface, "command": e.command, "events": [event]})
+    for group in groups:
+        ops = [(ev["payload"] or {}).get("op", "") for ev in group["events"]]
+        if group["actor"] is None and ops and set(ops) <= RUN_OPS and "run.step" in ops:
+            group["actor"] = "robot"
+        group["summary"] = _summary(group["events"], ops)
+    return groups
+
+
+def _summary(events: list[dict[str, Any]], ops: list[str]) -> str:
+    """What a row's events did, in a few words (empty for a single instruction)."""
+    if len(events) == 1:
+        return ""
+    steps = [(ev["payload"] or {}) for ev in events if (ev["payload"] or {}).get("op") == "run.step"]
+    parts = [op if n == 1 else f"{n} x {op}" for op, n in Counter(ops).items() if op != "run.step"]
+    if steps:
+        fates = Counter(_FATES.get(s.get("outcome", ""), s.get("outcome", "")) for s in steps)
+        mistakes = sum(1 for s in steps if s.get("mistake"))
+        detail = ", ".join(f"{n} {fate}" for fate, n in fates.items())
+        parts.append(f"{plural(len(steps), 'step')}: {detail}, {plural(mistakes, 'mistake')}")
+    return "; ".join(parts)
+
+
+_FATES = {"skipped": "left"}  # a step's outcome as the run's summary and table say it

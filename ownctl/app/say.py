@@ -20,6 +20,7 @@ from typing import Any
 
 from ownctl.app.context import AppContext
 from ownctl.errors import OwnctlError
+from ownctl.humanize import plural
 from ownctl.language import (
     AskOwner,
     AskPermitted,
@@ -38,6 +39,7 @@ from ownctl.language import (
     understand,
 )
 from ownctl.language.lexicon import COLORS
+from ownctl.logic.names import check_name
 
 
 @dataclass
@@ -236,6 +238,8 @@ def say(
     ``instructor`` are for a task the utterance asks for ("Clear the table")."""
     from ownctl.experiment.task import get_task
 
+    if speaker is not None:
+        check_name("speaker", speaker)  # before the words are read: a bad name is the error to report
     lctx = language_context(ctx, speaker, about)
     understood = understand(utterance, lctx)
     report = SayReport(utterance, understood, lctx.speaker, lctx.about)
@@ -270,8 +274,8 @@ def say(
 
 
 def _run_summary(data: dict[str, Any]) -> str:
-    return (f"Done with {data['task']}: {len(data['delivered'])} moved, {len(data['skipped'])} left, "
-            f"{data['mistakes']} mistakes.")
+    return (f"Done with {data['task']}: {len(data['delivered'])} delivered, {len(data['skipped'])} left, "
+            f"{plural(data['mistakes'], 'mistake')}.")
 
 
 __all__ = ["SayReport", "language_context", "run_function", "say"]

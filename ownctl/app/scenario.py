@@ -28,6 +28,7 @@ from typing import Any
 
 from ownctl.app.context import AppContext
 from ownctl.errors import BadValue, OwnctlError
+from ownctl.humanize import plural
 from ownctl.world.model import World
 from ownctl.world.scenario import (
     CheckExpectation,
@@ -253,8 +254,9 @@ def _run(ctx: AppContext, step: Step, physics: bool, render: str | None, result:
         tx.meta.converse(action=get_task(step.text).action)
     moved = ", ".join(data["delivered"]) or "nothing"
     left = ", ".join(f"{s['object']} ({s['reason']})" for s in data["skipped"]) or "nothing"
-    result.output = [f"moved: {moved}", f"left: {left}",
-                     f"{data['mistakes']} mistakes, {len(data['violations'])} norm violations"]
+    result.output = [f"delivered: {moved}", f"left: {left}",
+                     f"{plural(data['mistakes'], 'mistake')}, "
+                     f"{plural(len(data['violations']), 'norm violation')}"]
     result.result = data
     attempted = {s["object"] for s in data["steps"] if s["outcome"] != "done"}
     unsaid = [i for i in step.interrupts if i.object not in attempted]

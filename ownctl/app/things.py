@@ -14,6 +14,7 @@ from typing import Any
 from ownctl.app.context import AppContext, Done
 from ownctl.app.mindstore import changing
 from ownctl.errors import BadValue
+from ownctl.humanize import iso
 from ownctl.logic.names import check_name
 from ownctl.mind import KEEP
 from ownctl.world.model import Area, ObjectSpec
@@ -184,7 +185,7 @@ def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Don
     payload = {"op": "object.touch", "object": obj, "agent": agent, "time": time}
     with changing(ctx, payload, agents=[agent]) as (_, mind):
         mind.touch(obj, agent, time)  # recency is a percept of prediction
-    return Done(f"{agent} touched {obj} at {time:g}", {"object": obj, "agent": agent, "time": time})
+    return Done(f"{agent} touched {obj} at {iso(time)}", {"object": obj, "agent": agent, "time": time})
 
 
 # -- areas --------------------------------------------------------------------------------------

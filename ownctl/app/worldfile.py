@@ -17,6 +17,7 @@ from ownctl.app.context import AppContext, Done
 from ownctl.app.mindstore import load as load_mind
 from ownctl.app.mindstore import spec_of
 from ownctl.errors import BadValue, OwnctlError
+from ownctl.humanize import plural
 from ownctl.world.model import Area, World
 from ownctl.world.spec import to_toml, world_from_dict, world_to_dict
 
@@ -68,9 +69,9 @@ def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
     with ctx.write(payload) as tx:
         store_world(tx, world, ctx.now)
     counts = {"agents": len(world.agents), "areas": len(world.areas), "objects": len(world.objects)}
-    listing = ", ".join(f"{n} {k}" for k, n in counts.items())
+    listing = ", ".join(plural(n, k.removesuffix("s")) for k, n in counts.items())
     return Done(
-        f"loaded {world.name or path}: {listing}, {len(world.norms)} true norms",
+        f"loaded {world.name or path}: {listing}, {plural(len(world.norms), 'true norm')}",
         {"world": world.name, **counts, "norms": len(world.norms)},
     )
 

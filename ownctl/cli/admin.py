@@ -8,9 +8,12 @@ from typing import Annotated
 import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
+from ownctl.cli.help import Group
 
-db = typer.Typer(help="The store's location and schema revision.", no_args_is_help=True)
-config = typer.Typer(help="Settings: thresholds, trust, switches.", no_args_is_help=True)
+db = Group(help="The store's location and schema revision.")
+config = Group(help="Settings: thresholds, trust, the learner, switches.")
+
+KEY_HELP = "threshold, threshold.ACTION, trust, learner, frozen.*, disabled.*"
 
 
 class Frozen(StrEnum):
@@ -37,7 +40,11 @@ class Reset(StrEnum):
 
 
 def init(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """Create the store (the only way an explicitly named --db store is created)."""
+    """Create the store.
+
+    The default store is also created on first use; a store named with --db or OWNCTL_DB is
+    created only by init.
+    """
     from ownctl.app import admin
 
     done = admin.init(app_ctx(ctx))
@@ -64,7 +71,10 @@ def db_current(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = 
 
 @db.command("upgrade")
 def db_upgrade(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """Upgrade the store to the newest schema (any command also does this on open)."""
+    """Upgrade the store to the newest schema.
+
+    Any command also upgrades the store it opens.
+    """
     from ownctl.app import admin
 
     done = admin.db_upgrade(app_ctx(ctx))
@@ -75,7 +85,8 @@ def db_upgrade(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = 
 def config_get(
     ctx: typer.Context,
     key: Annotated[
-        str | None, typer.Argument(help="threshold, threshold.ACTION, trust, frozen.*, disabled.*")
+        str | None,
+        typer.Argument(metavar="KEY", help=KEY_HELP),
     ] = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
@@ -90,8 +101,14 @@ def config_get(
 @config.command("set")
 def config_set(
     ctx: typer.Context,
-    key: Annotated[str, typer.Argument(help="threshold, threshold.ACTION, trust, frozen.*, disabled.*")],
-    value: Annotated[str, typer.Argument(help="A number in [0, 1], true/false, or 'default'.")],
+    key: Annotated[
+        str,
+        typer.Argument(metavar="KEY", help=KEY_HELP),
+    ],
+    value: Annotated[
+        str,
+        typer.Argument(metavar="VALUE", help="A number in [0, 1], true/false, ours/paper, or 'default'."),
+    ],
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
@@ -104,12 +121,17 @@ def config_set(
 
 def reset(
     ctx: typer.Context,
-    what: Annotated[Reset, typer.Argument(help="perms, rules, claims (all beliefs) or all.")],
+    what: Annotated[
+        Reset, typer.Argument(metavar="perms|rules|claims|all", help="claims forgets every ownership belief.")
+    ],
     yes: Annotated[bool, typer.Option("--yes", help="Confirm: this deletes data.")] = False,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Forget permissions, rules, ownership beliefs, or all three (the world and the log stay)."""
+    """Forget permissions, rules, ownership beliefs, or all three.
+
+    The world and the event log stay.
+    """
     from ownctl.app import admin
 
     done = admin.reset(app_ctx(ctx), what.value, yes)
@@ -123,21 +145,31 @@ def _flag(ctx: typer.Context, key: str, on: bool, json_out: bool, quiet: bool) -
     emit(done.data, json_out, quiet, done.message)
 
 
-def freeze(ctx: typer.Context, what: Frozen, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """Freeze permissions (new ones are refused) or rules (they are not changed)."""
+FrozenArg = Annotated[
+    Frozen, typer.Argument(metavar="perms|rules", help="perms: new ones are refused; rules: kept as is.")
+]
+SwitchArg = Annotated[
+    Switch,
+    typer.Argument(metavar="inference|prediction",
+                   help="Rule-based ownership inference, or percept-based ownership prediction."),
+]
+
+
+def freeze(ctx: typer.Context, what: FrozenArg, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """Freeze permissions (refuse new ones) or rules (keep them)."""
     _flag(ctx, f"frozen.{what.value}", True, json_out, quiet)
 
 
-def unfreeze(ctx: typer.Context, what: Frozen, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+def unfreeze(ctx: typer.Context, what: FrozenArg, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
     """Undo freeze."""
     _flag(ctx, f"frozen.{what.value}", False, json_out, quiet)
 
 
-def disable(ctx: typer.Context, what: Switch, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """Switch off rule-based ownership inference or percept-based ownership prediction."""
+def disable(ctx: typer.Context, what: SwitchArg, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+    """Switch off ownership inference or ownership prediction."""
     _flag(ctx, f"disabled.{what.value}", True, json_out, quiet)
 
 
-def enable(ctx: typer.Context, what: Switch, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+def enable(ctx: typer.Context, what: SwitchArg, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
     """Undo disable."""
     _flag(ctx, f"disabled.{what.value}", False, json_out, quiet)

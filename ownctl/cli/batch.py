@@ -11,19 +11,18 @@ when it printed one), and on a failure the failing line with its error.
 
 from __future__ import annotations
 
-import contextlib
-import io
 import json
 import shlex
 import sys
-from collections.abc import Iterator
 from pathlib import Path
 from typing import Annotated
 
 import typer
 
 from ownctl.cli.common import EXIT_FORBIDDEN, JsonOpt, QuietOpt, State, emit
+from ownctl.cli.lines import run_words
 from ownctl.errors import OwnctlError
+from ownctl.humanize import plural
 
 
 def _lines(file: str) -> list[str]:
@@ -51,7 +50,9 @@ def _words(line: str, where: str) -> list[str]:
 
 def batch(
     ctx: typer.Context,
-    file: Annotated[str, typer.Argument(help="The instructions, one per line; - reads stdin.")],
+    file: Annotated[
+        str, typer.Argument(metavar="FILE", help="The instructions, one per line; - reads stdin.")
+    ],
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
@@ -60,10 +61,9 @@ def batch(
     Each line is its own transaction; the first failing line stops the batch (exit 1, or 2 for a
     usage error) and is named as FILE:LINE. Blank lines and # comments are skipped.
     """
-    from ownctl.cli.main import command
-
     state = ctx.find_root().obj
     assert isinstance(state, State)
+    root = ctx.find_root().command
     name = "stdin" if file == "-" else file
     ran = 0
     results: list[dict[str, object]] = []
@@ -73,46 +73,26 @@ def batch(
         if not words:
             continue
         state.interface, state.prefix = "batch", f"{where}: "
-        out, err = io.StringIO(), io.StringIO()
         try:
-            with _captured(json_out, out, err):
-                code = _run_line(command(), words, state, where)
+            done = run_words(root, words, state)
         finally:
             state.interface, state.prefix = "cli", ""
-            if json_out:
-                sys.stderr.write(err.getvalue())
+        sys.stderr.write(done.stderr)
         if json_out:
-            results.append({"line": number, "command": line.strip(), "exit": code or 0,
-                            "output": _parsed(out.getvalue())})
-        if code not in (None, 0, EXIT_FORBIDDEN):
+            results.append({"line": number, "command": line.strip(), "exit": done.code,
+                            "output": _parsed(done.stdout)})
+        else:
+            sys.stdout.write(done.stdout)
+        if done.code not in (0, EXIT_FORBIDDEN):
             if json_out:
-                lines = [x for x in err.getvalue().splitlines() if x.strip()]
-                typer.echo(json.dumps({"file": name, "ran": ran, "failed": number, "exit": code,
-                                       "error": lines[-1] if lines else "", "valid": [], "lines": results}))
-            raise typer.Exit(code)
+                errors = [x for x in done.stderr.splitlines() if x.strip()]
+                typer.echo(json.dumps({"file": name, "ran": ran, "failed": number, "exit": done.code,
+                                       "error": errors[-1] if errors else "", "valid": [],
+                                       "lines": results}))
+            raise typer.Exit(done.code)
         ran += 1
     summary = {"file": name, "ran": ran, **({"lines": results} if json_out else {})}
-    emit(summary, json_out, quiet, f"batch: ran {ran} instructions from {name}")
-
-
-def _run_line(group: typer.main.TyperGroup, words: list[str], state: State, where: str) -> int | None:
-    """Run one line's command in-process; a usage error of the line is reported as FILE:LINE."""
-    try:
-        return group.main(args=words, prog_name="ownctl", standalone_mode=False, obj=state)
-    except typer.TyperException as exc:  # a usage error of the line (click's, vendored by typer)
-        message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
-        typer.echo(f"ownctl: {where}: {' '.join(message.split())}", err=True)
-        return int(getattr(exc, "exit_code", 2))
-
-
-@contextlib.contextmanager
-def _captured(on: bool, out: io.StringIO, err: io.StringIO) -> Iterator[None]:
-    """With --json, keep each line's own output out of stdout (it goes into the one document)."""
-    if not on:
-        yield
-        return
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        yield
+    emit(summary, json_out, quiet, f"batch: ran {plural(ran, 'instruction')} from {name}")
 
 
 def _parsed(text: str) -> object:

@@ -11,7 +11,7 @@ import math
 import os
 import shlex
 import time
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Annotated, Any
 
@@ -25,14 +25,35 @@ if TYPE_CHECKING:
 
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print exactly one JSON document on stdout.")]
 QuietOpt = Annotated[bool, typer.Option("--quiet", "-q", help="Print nothing but errors.")]
+ACTION_HELP = "An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
+ActionArg = Annotated[str, typer.Argument(metavar="ACTION", help=ACTION_HELP)]
+ObjArg = Annotated[str, typer.Argument(metavar="OBJ", help="The object.")]
 
 EXIT_FORBIDDEN = 3  # check (and a question) answered "forbidden", as grep answers "no match"
 EXIT_FAILED = 4  # a task step or a scenario expectation failed
 
 
+def clock(environ: Mapping[str, str] = os.environ) -> float:
+    """Store time: ``OWNCTL_NOW`` (a float) when set, else wall-clock seconds."""
+    pinned = environ.get("OWNCTL_NOW")
+    if pinned is None or pinned == "":
+        return time.time()
+    try:
+        value = float(pinned)
+    except ValueError:
+        value = math.nan
+    if not math.isfinite(value):
+        raise BadValue(f"OWNCTL_NOW must be a finite number of seconds, got {pinned!r}")
+    return value
+
+
 @dataclass
 class State:
-    """Per-process CLI state (``ctx.obj``); ``batch`` hands the same one to every line."""
+    """Per-process CLI state (``ctx.obj``); ``batch`` hands the same one to every line.
+
+    ``time_source`` gives each command line its store time when it starts: the process clock for
+    the command line and ``batch`` lines, the scenario's clock for a scenario's command steps.
+    """
 
     db: str | None
     now: float
@@ -40,6 +61,7 @@ class State:
     command: str = ""
     prefix: str = ""  # put before error messages (batch: "FILE:LINE: ")
     app: AppContext | None = field(default=None, repr=False)
+    time_source: Callable[[], float] = field(default=clock, repr=False)
 
     def context(self) -> AppContext:
         """The app-layer context for this instruction (one open store per process)."""
@@ -54,20 +76,6 @@ class State:
         """Close the store (SQLite checkpoints its WAL into the database file)."""
         if self.app is not None:
             self.app.close()
-
-
-def clock(environ: dict[str, str] | os._Environ[str] = os.environ) -> float:
-    """Store time: ``OWNCTL_NOW`` (a float) when set, else wall-clock seconds."""
-    pinned = environ.get("OWNCTL_NOW")
-    if pinned is None or pinned == "":
-        return time.time()
-    try:
-        value = float(pinned)
-    except ValueError:
-        value = math.nan
-    if not math.isfinite(value):
-        raise BadValue(f"OWNCTL_NOW must be a finite number of seconds, got {pinned!r}")
-    return value
 
 
 def command_text(args: Sequence[str]) -> str:
@@ -91,9 +99,12 @@ def app_ctx(ctx: typer.Context) -> AppContext:
 
 
 def emit(data: Any, json_out: bool, quiet: bool, human: str | Callable[[], None]) -> None:
-    """Print ``data`` as JSON, or the human form (a line, or a function that prints), or nothing."""
+    """Print ``data`` as JSON (times also as ISO 8601 strings), or the human form (a line, or a
+    function that prints), or nothing."""
     if json_out:
-        typer.echo(json.dumps(data, ensure_ascii=False))
+        from ownctl.cli.render import with_iso
+
+        typer.echo(json.dumps(with_iso(data), ensure_ascii=False))
     elif not quiet:
         if callable(human):
             human()
@@ -101,18 +112,28 @@ def emit(data: Any, json_out: bool, quiet: bool, human: str | Callable[[], None]
             typer.echo(human)
 
 
-def table(title: str | None, columns: Sequence[str], rows: Sequence[Sequence[Any]]) -> Callable[[], None]:
-    """A function printing a rich table (``None`` cells show as blank)."""
+def table(title: str | None, columns: Sequence[str], rows: Sequence[Sequence[Any]],
+          whole: Collection[str] = ()) -> Callable[[], None]:
+    """A function printing a rich table (``None`` cells show as blank, text is never markup).
+
+    Cells of the ``whole`` columns (times) are kept on one line, never cut short.
+    """
 
     def show() -> None:
         from rich.console import Console
+        from rich.markup import escape
         from rich.table import Table
 
+        cells = [["" if v is None else fmt(v) for v in row] for row in rows]
         grid = Table(title=title, show_lines=False)
-        for column in columns:
-            grid.add_column(column)
-        for row in rows:
-            grid.add_row(*("" if v is None else fmt(v) for v in row))
+        for i, column in enumerate(columns):
+            if column in whole:
+                widest = max([len(column), *(len(r[i]) for r in cells)])
+                grid.add_column(column, no_wrap=True, min_width=widest)
+            else:
+                grid.add_column(column)
+        for row in cells:
+            grid.add_row(*(escape(cell) for cell in row))
         Console().print(grid)
 
     return show
@@ -139,8 +160,77 @@ def report_error(ctx: Any, exc: OwnctlError) -> None:
     typer.echo(f"ownctl: {prefix}{message}", err=True)
 
 
+#: pydantic's error types for a value that is not a number, and how ownctl says it
+_NOT_A = {"int_parsing": "a whole number", "int_from_float": "a whole number", "int_type": "a whole number",
+          "float_parsing": "a number", "float_type": "a number", "finite_number": "a finite number"}
+
+
+def _param_name(param: Any) -> str:
+    """How a parameter is named in an error: its option flags, or an argument's metavar."""
+    if param.param_type_name == "option":
+        return "/".join(param.opts)
+    return param.metavar or (param.name or "value").upper()
+
+
+def usage_message(exc: typer.TyperException) -> tuple[str, list[str]]:
+    """A usage error (typer's copy of click's UsageError) as one line naming the bad value, and the
+    valid values when there is a list of them.
+
+    A value typer could not convert names the value and what it should be; a group run without
+    a command, or with an unknown one, lists the commands; every message points to ``--help``.
+    """
+    ctx, param = getattr(exc, "ctx", None), getattr(exc, "param", None)
+    errors = getattr(exc.__cause__, "errors", None)  # pydantic's ValidationError behind a conversion
+    if param is not None and callable(errors) and errors():
+        first = errors()[0]
+        value, kind = first.get("input"), str(first.get("type", ""))
+        detail = str(first.get("msg", "")).removeprefix("Value error, ").removesuffix(".")
+        if kind in _NOT_A:
+            detail = f"{value!r} is not {_NOT_A[kind]}"
+        elif repr(value) not in detail:
+            detail = f"{value!r}: {detail[:1].lower()}{detail[1:]}"
+        message = f"invalid value for {_param_name(param)}: {detail}"
+    else:
+        text = " ".join(exc.format_message().split()).removesuffix(".")
+        message = text[:1].lower() + text[1:]
+    group = ctx.command if ctx is not None else None
+    commands = getattr(group, "list_commands", None)
+    valid: list[str] = []
+    if callable(commands) and message.startswith(("missing command", "no such command")):
+        valid = list(commands(ctx))
+        message += f"; commands: {', '.join(valid)}"
+    if ctx is not None:
+        message += f" (see: {ctx.command_path} --help)"
+    return message, valid
+
+
 class OwnctlGroup(TyperGroup):
-    """The root group: records the arguments for the log and turns OwnctlError into exit codes."""
+    """The root group: records the arguments for the log, turns OwnctlError into exit codes, and
+    reports usage errors as one line on stderr (exit 2), in every mode.
+
+    ``main`` returns the exit code when ``standalone_mode`` is false (a batch line, a scenario
+    step) and exits with it otherwise.
+    """
+
+    def main(self, args: Sequence[str] | None = None, prog_name: str | None = None,
+             complete_var: str | None = None, standalone_mode: bool = True, **extra: Any) -> Any:
+        state = extra.get("obj")
+        prefix = state.prefix if isinstance(state, State) else ""
+        try:
+            result = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
+            code = result if isinstance(result, int) and not isinstance(result, bool) else 0
+        except typer.TyperException as exc:  # click's UsageError and its kin, in typer's copy of click
+            message, valid = usage_message(exc)
+            if "--json" in (args or ()):  # like every error: the document on stdout, the line on stderr
+                typer.echo(json.dumps({"error": message, "valid": valid}, ensure_ascii=False))
+            typer.echo(f"ownctl: {prefix}{message}", err=True)
+            code = int(getattr(exc, "exit_code", 2))
+        except typer.Abort:
+            typer.echo(f"ownctl: {prefix}aborted", err=True)
+            code = 1
+        if standalone_mode:
+            raise SystemExit(code)
+        return code
 
     def make_context(self, info_name: str | None, args: list[str], parent: Any = None, **extra: Any) -> Any:
         original = list(args)

@@ -14,25 +14,31 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt
+from ownctl.cli.help import Group
+from ownctl.humanize import plural
 
 if TYPE_CHECKING:
     from ownctl.experiment.runner import ExperimentResult
     from ownctl.experiment.summary import Cell
 
-experiment_app = typer.Typer(
-    help="Run the paper's experiments (Tables 1-3) in memory and compare with its published values.",
-    no_args_is_help=True,
-)
+experiment_app = Group(help="The paper's experiments (Tables 1-3), beside its values.\n\n"
+                       "Each runs in memory and prints ours and the paper's published figures side by side.")
 
-TrialsOpt = Annotated[int, typer.Option("--trials", "-n", help="Trials per condition.")]
-SeedOpt = Annotated[int, typer.Option("--seed", help="Seed; trial t of condition c uses [seed, c, t].")]
-JobsOpt = Annotated[int, typer.Option("--jobs", "-j", help="Worker processes (results do not depend on it).")]
+TrialsOpt = Annotated[int, typer.Option("--trials", "-n", metavar="N", help="Trials per condition.")]
+SeedOpt = Annotated[
+    int, typer.Option("--seed", metavar="SEED", help="Seed; trial t of condition c uses [seed, c, t].")
+]
+JobsOpt = Annotated[
+    int, typer.Option("--jobs", "-j", metavar="N", help="Worker processes (results do not depend on it).")
+]
 WorldOpt = Annotated[
     str | None,
     typer.Option("--world", metavar="FILE", help="A TOML world file with true norms (default: the paper's "
                  "blocks world, scenarios/paper-blocks.toml)."),
 ]
-LearnerOpt = Annotated[str, typer.Option("--learner", help="Rule learner: ours or paper.")]
+LearnerOpt = Annotated[
+    str, typer.Option("--learner", metavar="ours|paper", help="Rule learner: ours or paper.")
+]
 CsvOpt = Annotated[str | None, typer.Option("--csv", metavar="FILE", help="Also write every figure as CSV.")]
 PlotOpt = Annotated[str | None, typer.Option("--plot", metavar="FILE.png", help="Also plot the metrics.")]
 
@@ -89,7 +95,10 @@ def norms(
     learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None,
     quiet: QuietOpt = False,
 ) -> None:
-    """Table 1: learn norms from permissions on 100/50/25% of the objects, exact or noisy owners."""
+    """Table 1: learn norms from permissions on some of the objects.
+
+    Permissions are given on 100, 50 or 25% of the objects, with exact or noisy ownership.
+    """
     _run("norms", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet)
 
 
@@ -99,7 +108,10 @@ def ownership(
     learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None,
     quiet: QuietOpt = False,
 ) -> None:
-    """Table 2: predict ownership of held-out objects from claims and permissions on half of them."""
+    """Table 2: predict the ownership of held-out objects.
+
+    Claims and permissions are given on half of the objects; the other half is predicted.
+    """
     _run("ownership", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet)
 
 
@@ -107,10 +119,15 @@ def ownership(
 def task(
     trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, world: WorldOpt = None,
     learner: LearnerOpt = "ours",
-    which: Annotated[str, typer.Option("--task", help="collectAll, trashAll or both.")] = "both",
+    which: Annotated[
+        str, typer.Option("--task", metavar="TASK", help="collectAll, trashAll or both.")
+    ] = "both",
     json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None, quiet: QuietOpt = False,
 ) -> None:
-    """Table 3: collectAll / trashAll with a correcting instructor, counting mistakes."""
+    """Table 3: collectAll and trashAll with a correcting instructor.
+
+    Counts the robot's mistakes and scores the rules and ownership it learned.
+    """
     _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet)
 
 
@@ -192,5 +209,5 @@ def render(result: ExperimentResult) -> None:
     for note in exp.metrics:
         console.print(f"[dim]* {note}[/dim]")
     n = len(result.conditions)
-    console.print(f"{result.trials} trials x {n} condition{'s' if n != 1 else ''} on {result.world} "
+    console.print(f"{plural(result.trials, 'trial')} x {plural(n, 'condition')} on {result.world} "
                   f"(seed {result.seed}, jobs {result.jobs}) in {result.seconds:.2f} s")

@@ -6,23 +6,31 @@ from typing import TYPE_CHECKING, Annotated
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
+from ownctl.cli.common import ActionArg, JsonOpt, ObjArg, QuietOpt, app_ctx, emit, table
+from ownctl.cli.help import Group
+from ownctl.cli.render import when
 from ownctl.errors import RuleSyntaxError
 
 if TYPE_CHECKING:
     from ownctl.app.context import Done
 
-claims = typer.Typer(help="Ownership claims.", no_args_is_help=True)
+claims = Group(help="Ownership claims.")
 
-SpeakerOpt = Annotated[str | None, typer.Option("--as", help="Who says it (kept with the instruction).")]
-Words = Annotated[list[str] | None, typer.Argument(help="'on OBJECT', or 'if LITERAL [and LITERAL]...'.")]
+SpeakerOpt = Annotated[
+    str | None, typer.Option("--as", metavar="AGENT", help="Who says it (a name, kept with the instruction).")
+]
+Words = Annotated[
+    list[str] | None,
+    typer.Argument(metavar="WORDS", help="'on OBJ', or 'if LITERAL [and LITERAL]...' (see the README)."),
+]
+
 
 
 def claim(
     ctx: typer.Context,
-    obj: Annotated[str, typer.Argument(help="The object.")],
-    agent: Annotated[str, typer.Argument(help="The agent.")],
-    p: Annotated[float, typer.Option("--p", help="How sure the speaker is, in [0, 1].")] = 1.0,
+    obj: ObjArg,
+    agent: Annotated[str, typer.Argument(metavar="AGENT", help="The agent who owns it.")],
+    p: Annotated[float, typer.Option("--p", metavar="P", help="How sure the speaker is, in [0, 1].")] = 1.0,
     negated: Annotated[
         bool, typer.Option("--not", help="The agent does NOT own it (stores 1 - trust*p).")
     ] = False,
@@ -33,7 +41,11 @@ def claim(
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Claim that AGENT owns OBJECT ("that's mine"), weighted by the trust setting."""
+    """Claim that AGENT owns OBJ ("that's mine").
+
+    The claim is weighted by the trust setting; it refits AGENT's ownership prediction and updates
+    what is inferred from the permissions.
+    """
     from ownctl.app import instruct
 
     done = instruct.add_claim(app_ctx(ctx), obj, agent, p, negated, only, speaker)
@@ -46,8 +58,9 @@ def claims_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt =
     from ownctl.app import query
 
     rows = query.list_claims(app_ctx(ctx))
-    cells = [[r["object"], r["agent"], r["p"], r["speaker"], r["trust"], r["time"]] for r in rows]
-    emit(rows, json_out, quiet, table("claims", ["object", "agent", "p", "speaker", "trust", "time"], cells))
+    cells = [[r["object"], r["agent"], r["p"], r["speaker"], r["trust"], when(r["time"])] for r in rows]
+    emit(rows, json_out, quiet, table("claims", ["object", "agent", "p", "speaker", "trust", "time"], cells,
+                                      whole={"time"}))
 
 
 def _instruct(
@@ -65,19 +78,19 @@ def _instruct(
 
 def forbid(
     ctx: typer.Context,
-    action: Annotated[
-        str,
-        typer.Argument(
-            help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
-        ),
-    ],
+    action: ActionArg,
     words: Words = None,
-    p: Annotated[float, typer.Option("--p", help="With 'on': how sure, in [0, 1] (stored value p).")] = 1.0,
+    p: Annotated[
+        float, typer.Option("--p", metavar="P", help="With 'on': how sure, in [0, 1] (stored value p).")
+    ] = 1.0,
     speaker: SpeakerOpt = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Forbid ACTION on one object ('on OBJECT') or whenever a condition holds ('if ...').
+    """Forbid ACTION on one object, or whenever a condition holds.
+
+    'on OBJ' stores a permission (the conflict gate decides whether it teaches the rules or the
+    ownership beliefs); 'if ...' states a norm, added to the rules as given.
 
     Examples: ownctl forbid trash on wallet;  ownctl forbid pickUp if ownedBy xuan and not isColored red
     """
@@ -87,20 +100,20 @@ def forbid(
 
 def allow(
     ctx: typer.Context,
-    action: Annotated[
-        str,
-        typer.Argument(
-            help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
-        ),
-    ],
+    action: ActionArg,
     words: Words = None,
     p: Annotated[
-        float, typer.Option("--p", help="With 'on': how sure, in [0, 1] (stored value 1 - p).")
+        float, typer.Option("--p", metavar="P", help="With 'on': how sure, in [0, 1] (stored value 1 - p).")
     ] = 1.0,
     speaker: SpeakerOpt = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Allow ACTION on one object ('on OBJECT'), or state an allow norm ('if ...', applied by the learner)."""
+    """Allow ACTION on one object, or state an allow norm.
+
+    'on OBJ' stores a permission; 'if ...' is an allow norm, subtracted from the forbid rules.
+
+    Examples: ownctl allow trash on mug;  ownctl allow trash if isColored red
+    """
     done = _instruct(ctx, "allow", action, words or [], p, speaker)
     emit(done.data, json_out, quiet, done.message)

@@ -16,16 +16,14 @@ from ownctl.cli import admin, instruct, query, say_cmd, things
 from ownctl.cli.batch import batch
 from ownctl.cli.common import OwnctlGroup, State, clock, command_text
 from ownctl.cli.experiment_cmd import experiment_app
+from ownctl.cli.help import Group
 from ownctl.cli.run_cmd import run as run_task
 from ownctl.cli.scenario_cmd import scenario
 
-app = typer.Typer(
+app = Group(
     cls=OwnctlGroup,
     name="ownctl",
     help="A robot's ownership conscience: who owns what, which actions are forbidden, and why.",
-    no_args_is_help=True,
-    add_completion=False,
-    pretty_exceptions_enable=False,
 )
 
 
@@ -44,7 +42,8 @@ def main(
             "--db",
             envvar="OWNCTL_DB",
             metavar="URL",
-            help="The store: any SQLAlchemy URL or a SQLite file path (default: the user data directory).",
+            help="The store: any SQLAlchemy URL or a SQLite file path (default: a file in the user data"
+            " directory; ownctl db path prints it).",
         ),
     ] = None,
     version: Annotated[
@@ -53,8 +52,8 @@ def main(
 ) -> None:
     """Global options. The store clock is OWNCTL_NOW (seconds) when set, else the wall clock."""
     text = command_text(ctx.meta.get("ownctl.args", []))
-    if isinstance(ctx.obj, State):  # a line of a batch: same store, fresh clock
-        ctx.obj.now, ctx.obj.command = clock(), text
+    if isinstance(ctx.obj, State):  # a batch line or a scenario step: same store, the line's own time
+        ctx.obj.now, ctx.obj.command = ctx.obj.time_source(), text
         return
     state = State(db=db or None, now=clock(), command=text)
     ctx.obj = state

@@ -6,26 +6,27 @@ from typing import Annotated
 
 import typer
 
-from ownctl.cli.common import EXIT_FORBIDDEN, JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.common import EXIT_FORBIDDEN, ActionArg, JsonOpt, ObjArg, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.help import Group
+from ownctl.cli.render import when
 
-rules = typer.Typer(help="The forbid rules (given or learned).", no_args_is_help=True)
-perms = typer.Typer(help="Object-specific permissions.", no_args_is_help=True)
+rules = Group(help="The forbid rules (given or learned).")
+perms = Group(help="Object-specific permissions.")
 
 
 
 def check(
     ctx: typer.Context,
-    action: Annotated[
-        str,
-        typer.Argument(
-            help="An action: find, pickUp, putDown, release, goHome, moveTo, replace, wait, trash, collect."
-        ),
-    ],
-    obj: Annotated[str, typer.Argument(help="The object.")],
+    action: ActionArg,
+    obj: ObjArg,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Is ACTION permitted on OBJECT? Prints the decision and what decided it; exit 3 if forbidden."""
+    """Is ACTION permitted on OBJ? Exit 3 if forbidden.
+
+    Prints the decision, what decided it (a permission or the rules) and, for an action with
+    prerequisite steps, each step's decision.
+    """
     from ownctl.app import decide
 
     report = decide.check(app_ctx(ctx), action, obj)
@@ -56,19 +57,24 @@ def check(
 
 def owners(
     ctx: typer.Context,
-    obj: Annotated[str | None, typer.Argument(help="The object whose owners to show.")] = None,
+    obj: Annotated[str | None, typer.Argument(metavar="OBJ", help="The object whose owners to show.")] = None,
     agent: Annotated[
-        str | None, typer.Option("--agent", help="Instead: the objects this agent owns.")
+        str | None, typer.Option("--agent", metavar="AGENT", help="Instead: the objects this agent owns.")
     ] = None,
-    min_p: Annotated[float, typer.Option("--min", help="With --agent: the least probability listed.")] = 0.5,
+    min_p: Annotated[
+        float, typer.Option("--min", metavar="P", help="With --agent: the least probability listed.")
+    ] = 0.5,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Who probably owns OBJECT; or, with --agent, which objects AGENT probably owns."""
+    """Who probably owns OBJ, or which objects an agent owns.
+
+    Lists each agent's claim, prior and posterior and which of them the decisions use.
+    """
     from ownctl.app import query
 
     if (obj is None) == (agent is None):
-        raise typer.BadParameter("give either an OBJECT or --agent AGENT")
+        raise typer.BadParameter("give either an OBJ or --agent AGENT")
     if agent is not None:
         rows = query.owned_by(app_ctx(ctx), agent, min_p)
         emit(
@@ -92,7 +98,10 @@ def owners(
 
 @rules.command("list")
 def rules_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """List the rules in canonical text, with their soft accuracy on the stored permissions."""
+    """List the rules in canonical text, with their accuracy.
+
+    The accuracy is the rule's soft agreement with its action's stored permissions.
+    """
     from ownctl.app import query
 
     rows = query.list_rules(app_ctx(ctx))
@@ -117,7 +126,10 @@ def _provenance(prov: dict) -> str:
 
 @rules.command("remove")
 def rules_remove(
-    ctx: typer.Context, rule_id: int, json_out: JsonOpt = False, quiet: QuietOpt = False
+    ctx: typer.Context,
+    rule_id: Annotated[int, typer.Argument(metavar="ID", help="The rule's id (see rules list).")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
 ) -> None:
     """Forget one rule (by id, see rules list)."""
     from ownctl.app import query
@@ -138,7 +150,10 @@ def perms_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = 
 
 @perms.command("remove")
 def perms_remove(
-    ctx: typer.Context, perm_id: int, json_out: JsonOpt = False, quiet: QuietOpt = False
+    ctx: typer.Context,
+    perm_id: Annotated[int, typer.Argument(metavar="ID", help="The permission's id (see perms list).")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
 ) -> None:
     """Forget one permission (by id, see perms list)."""
     from ownctl.app import query
@@ -149,16 +164,33 @@ def perms_remove(
 
 def log(
     ctx: typer.Context,
-    limit: Annotated[int | None, typer.Option("--limit", "-n", help="Only the last N instructions.")] = None,
+    limit: Annotated[
+        int | None, typer.Option("--limit", "-n", metavar="N", help="Only the last N instructions.")
+    ] = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Show the event log: every instruction, who gave it, when and from which interface."""
+    """Show the event log, one line per instruction.
+
+    Each line says when, who (--as, or the robot for a task run), through which interface, and
+    the instruction as typed; a task run's steps share their run's line. --json lists every event.
+    """
     from ownctl.app import query
 
-    rows = query.events(app_ctx(ctx), limit)
-    cells = [[r["id"], r["time"], r["actor"], r["interface"], r["command"]] for r in rows]
-    emit(rows, json_out, quiet, table("log", ["id", "time", "actor", "via", "instruction"], cells))
+    rows = query.instructions(app_ctx(ctx), limit)
+
+    def human() -> None:  # one line per instruction, like a version-control log: nothing is cut
+        for r in rows:
+            summary = f"  ({r['summary']})" if r["summary"] else ""
+            typer.echo(f"{_ids(r):>5}  {when(r['time'])}  {r['actor'] or '-':<8} {r['interface']:<8} "
+                       f"{r['command']}{summary}")
+
+    emit([e for r in rows for e in r["events"]], json_out, quiet, human)
+
+
+def _ids(row: dict) -> str:
+    """``7``, or ``3-22`` for a row of several events."""
+    return str(row["first"]) if row["first"] == row["last"] else f"{row['first']}-{row['last']}"
 
 
 __all__ = ["check", "fmt", "log", "owners", "perms", "rules"]

@@ -7,28 +7,43 @@ from typing import Annotated, Any
 import typer
 
 from ownctl.cli.common import EXIT_FAILED, JsonOpt, QuietOpt, app_ctx, emit
+from ownctl.humanize import plural
 
-MARKS = {"delivered": "[green]moved[/]", "skipped": "[yellow]left[/]", "done": "[dim]done[/]"}
+#: how the live table shows each fate (the words the summary uses too)
+MARKS = {"delivered": "[green]delivered[/]", "skipped": "[yellow]left[/]", "done": "[dim]done[/]"}
 
 
 def run(
     ctx: typer.Context,
-    task: Annotated[str, typer.Argument(help="The task: trashAll or collectAll.")],
+    task: Annotated[str, typer.Argument(metavar="TASK", help="The task: trashAll or collectAll.")],
     instructor: Annotated[
-        str, typer.Option(help="oracle: a simulated human corrects mistakes from the world's truth; none.")
+        str,
+        typer.Option(metavar="oracle|none",
+                     help="oracle: a simulated human corrects mistakes from the world's truth; none."),
     ] = "oracle",
     physics: Annotated[bool, typer.Option("--physics/--kinematic", help="MuJoCo, or teleport.")] = True,
-    seed: Annotated[int, typer.Option(help="Seed of the blocks world loaded into an empty store.")] = 0,
+    seed: Annotated[
+        int, typer.Option(metavar="SEED", help="Seed of the blocks world loaded into an empty store.")
+    ] = 0,
     layout_seed: Annotated[
-        int | None, typer.Option(help="Add a new layout of the same world (same agents and true norms).")
+        int | None,
+        typer.Option(metavar="SEED", help="Add a new layout of the same world (same agents and true norms)."),
     ] = None,
-    arm: Annotated[str, typer.Option(help="auto (the nearer arm), left or right.")] = "auto",
-    grasp: Annotated[str, typer.Option(help="weld (fingers close, then hold) or friction.")] = "weld",
+    arm: Annotated[
+        str, typer.Option(metavar="auto|left|right", help="auto (the nearer arm), left or right.")
+    ] = "auto",
+    grasp: Annotated[
+        str, typer.Option(metavar="weld|friction", help="weld (fingers close, then hold) or friction.")
+    ] = "weld",
     render: Annotated[str | None, typer.Option(metavar="FILE", help="Write FILE.png or FILE.mp4.")] = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Play a task on the store's world, obeying (and learning) its norms; exit 4 if a step failed."""
+    """Play a task, obeying and learning the norms.
+
+    The task runs on the store's world; an empty store first receives the paper's blocks world.
+    Exit 4 if a step failed.
+    """
     from rich.console import Console
     from rich.live import Live
     from rich.table import Table
@@ -62,7 +77,8 @@ def run(
         rtf = f", {data['real_time_factor']:.0f}x real time" if data["sim_seconds"] else ""
         typer.echo(
             f"{task}: {len(data['delivered'])} delivered, {len(data['skipped'])} left, "
-            f"{data['mistakes']} mistakes, {len(data['violations'])} norm violations executed\n"
+            f"{plural(data['mistakes'], 'mistake')}, "
+            f"{plural(len(data['violations']), 'norm violation')} executed\n"
             f"rules ({', '.join(rule['actions'])}): accuracy {rule['accuracy']:.3f}, F1 {rule['f1']:.3f}; "
             f"ownership: accuracy {own['accuracy']:.3f}, F1 {own['f1']:.3f}\n"
             f"sim {data['sim_seconds']:.1f} s, wall {data['wall_seconds']:.2f} s{rtf}"

@@ -2,55 +2,43 @@
 
 from __future__ import annotations
 
-import io
-import os
-from contextlib import redirect_stderr, redirect_stdout
+from collections.abc import Callable
 from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
 from ownctl.cli.common import EXIT_FAILED, JsonOpt, QuietOpt, State, emit
+from ownctl.cli.help import Group
+from ownctl.cli.lines import run_words
 
 if TYPE_CHECKING:
     from ownctl.app.context import AppContext
     from ownctl.world.scenario import Step
 
 
-scenario = typer.Typer(
-    help="Scripted scenarios: a world, steps (say, command, run) and expected outcomes (TOML).",
-    no_args_is_help=True,
-)
+scenario = Group(
+    help="Play scripted scenarios and check their outcomes.\n\nA scenario is a world file with steps "
+    "(say, command, run) and what each step expects.")
 
 
-def run_line(ctx: AppContext, step: Step) -> tuple[int, str, str]:
-    """Run a step's command line in-process on the scenario's store, at the scenario's time.
+def _step_runner(root: Any) -> Callable[[AppContext, Step], tuple[int, str, str]]:
+    """Run a command step's line in-process on the scenario's store, at the scenario's time.
 
-    Like a ``batch`` line: the same click command, a State bound to the scenario's AppContext; its
-    output is captured. Returns (exit code, stdout, stderr).
+    Like a ``batch`` line (:func:`ownctl.cli.lines.run_words`), with a State bound to the
+    scenario's AppContext and its clock. Returns (exit code, stdout, stderr).
     """
-    from ownctl.cli.main import command
 
-    state = State(db=ctx.db, now=ctx.now, interface="scenario", command=step.text,
-                  prefix=f"step {step.number}: ", app=ctx)
-    now, saved = ctx.now, os.environ.get("OWNCTL_NOW")
-    out, err = io.StringIO(), io.StringIO()
-    os.environ["OWNCTL_NOW"] = repr(now)  # the line runs at the scenario's time, not the wall clock's
-    try:
-        with redirect_stdout(out), redirect_stderr(err):
-            try:
-                code = command().main(args=list(step.words), prog_name="ownctl", standalone_mode=False,
-                                      obj=state)
-            except typer.TyperException as exc:  # a usage error of the line
-                message = exc.format_message() if hasattr(exc, "format_message") else str(exc)
-                typer.echo(f"ownctl: step {step.number}: {' '.join(message.split())}", err=True)
-                code = getattr(exc, "exit_code", 2)
-    finally:
-        if saved is None:
-            os.environ.pop("OWNCTL_NOW", None)
-        else:
-            os.environ["OWNCTL_NOW"] = saved
-        ctx.now = now
-    return int(code or 0), out.getvalue(), err.getvalue()
+    def run_step(app: AppContext, step: Step) -> tuple[int, str, str]:
+        now, interface, command = app.now, app.interface, app.command
+        state = State(db=app.db, now=now, interface="scenario", command=step.text,
+                      prefix=f"step {step.number}: ", app=app, time_source=lambda: now)
+        try:
+            done = run_words(root, step.words, state)
+        finally:
+            app.now, app.interface, app.command = now, interface, command
+        return done.code, done.stdout, done.stderr
+
+    return run_step
 
 
 def _global_db(ctx: typer.Context) -> str | None:
@@ -76,7 +64,7 @@ def _show_step(result: Any) -> None:
 @scenario.command("play")
 def play(
     ctx: typer.Context,
-    file: Annotated[str, typer.Argument(help="The scenario: a TOML world file with steps.")],
+    file: Annotated[str, typer.Argument(metavar="FILE", help="The scenario: a TOML world file with steps.")],
     physics: Annotated[
         bool, typer.Option("--physics", help="Run tasks in MuJoCo (default: kinematically, instantly).")
     ] = False,
@@ -90,10 +78,12 @@ def play(
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Play a scenario: load its world, play its steps, check every expectation; exit 4 if one fails.
+    """Play a scenario and check every expectation; exit 4 if one fails.
 
-    Plays on a temporary store unless --db is given, here or before the command (OWNCTL_DB alone is not used, so a scenario never writes into the everyday store by accident).
-    """  # noqa: E501
+    Loads the scenario's world, plays its steps (say, command, run) and checks what each step
+    expects. Plays on a temporary store unless --db is given, here or before the command
+    (OWNCTL_DB alone is not used, so a scenario never writes into the everyday store by accident).
+    """
     from ownctl.app.scenario import play_file
 
     state = ctx.find_root().obj
@@ -105,7 +95,8 @@ def play(
             typer.echo(f"scenario: {s.name or s.source} ({s.source})")
 
     report = play_file(
-        file, db or _global_db(ctx), state.now, physics=physics, render=render, run_command=run_line,
+        file, db or _global_db(ctx), state.now, physics=physics, render=render,
+        run_command=_step_runner(ctx.find_root().command),
         on_step=_show_step if human else None, before=header,
     )
     data = report.data

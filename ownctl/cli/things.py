@@ -7,33 +7,43 @@ from typing import Annotated
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.common import JsonOpt, ObjArg, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.help import Group
+from ownctl.cli.render import when
 
-world = typer.Typer(
-    help="Load and export whole worlds (TOML files of architecture section 11).", no_args_is_help=True
-)
-agent = typer.Typer(help="Agents: the possible owners.", no_args_is_help=True)
-obj = typer.Typer(
-    help="Objects and their percepts (colour, position, categories, interactions).", no_args_is_help=True
-)
-area = typer.Typer(help="Named box areas on the table plane.", no_args_is_help=True)
+world = Group(help="Load and export whole worlds as TOML files.\n\n"
+                   "The file format is described in docs/architecture.md.")
+agent = Group(help="Agents: the possible owners.")
+obj = Group(help="Objects and their percepts: colour, position, categories.")
+area = Group(help="Named box areas on the table plane.")
 
-ColorOpt = Annotated[str | None, typer.Option("--color", help="Colour name ('none' clears it).")]
-PosOpt = Annotated[str | None, typer.Option("--pos", help="Position X,Y[,Z] in metres ('none' clears it).")]
+NameArg = Annotated[
+    str, typer.Argument(metavar="NAME", help="Its name: a letter, then letters, digits, _ or -.")
+]
+ColorOpt = Annotated[
+    str | None, typer.Option("--color", metavar="COLOUR", help="Colour name ('none' clears it).")
+]
+PosOpt = Annotated[
+    str | None, typer.Option("--pos", metavar="X,Y[,Z]", help="Position in metres ('none' clears it).")
+]
 CategoryOpt = Annotated[
-    list[str] | None, typer.Option("--category", help="A category (repeatable; 'none' clears).")
+    list[str] | None,
+    typer.Option("--category", metavar="CATEGORY", help="A category (repeatable; 'none' clears)."),
 ]
 
 
 @world.command("load")
 def world_load(
     ctx: typer.Context,
-    file: Annotated[str, typer.Argument(help="World or scenario TOML file.")],
-    seed: Annotated[int, typer.Option(help="Seed for a [generator] section.")] = 0,
+    file: Annotated[str, typer.Argument(metavar="FILE", help="World or scenario TOML file.")],
+    seed: Annotated[int, typer.Option(metavar="SEED", help="Seed for a [generator] section.")] = 0,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Add a world's agents, areas, objects and ground truth to the store ([[steps]] are ignored)."""
+    """Add a world file's agents, areas, objects and ground truth.
+
+    A scenario file's [[steps]] are ignored (ownctl scenario play plays them).
+    """
     from ownctl.app import worldfile
 
     done = worldfile.load(app_ctx(ctx), file, seed)
@@ -44,12 +54,15 @@ def world_load(
 def world_export(
     ctx: typer.Context,
     output: Annotated[
-        Path | None, typer.Option("--output", "-o", help="Write to this file, not stdout.")
+        Path | None, typer.Option("--output", "-o", metavar="FILE", help="Write to this file, not stdout.")
     ] = None,
-    name: Annotated[str, typer.Option(help="The world's name in the file.")] = "",
+    name: Annotated[str, typer.Option(metavar="NAME", help="The world's name in the file.")] = "",
     json_out: JsonOpt = False,
 ) -> None:
-    """Print the store's world (agents, areas, objects, ground truth) as TOML, or JSON with --json."""
+    """Print the store's world as TOML (or JSON with --json).
+
+    The world is its agents, areas, objects and ground truth, as world load reads it back.
+    """
     import json
 
     from ownctl.app import worldfile
@@ -63,7 +76,7 @@ def world_export(
 
 
 @agent.command("add")
-def agent_add(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+def agent_add(ctx: typer.Context, name: NameArg, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
     """Introduce an agent (a possible owner)."""
     from ownctl.app import things
 
@@ -86,8 +99,16 @@ def agent_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = 
 
 
 @agent.command("remove")
-def agent_remove(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """Forget an agent and every belief about it (refused while a rule names it)."""
+def agent_remove(
+    ctx: typer.Context,
+    name: Annotated[str, typer.Argument(metavar="AGENT", help="The agent.")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """Forget an agent and every belief about it.
+
+    Refused while a rule names the agent.
+    """
     from ownctl.app import things
 
     done = things.remove_agent(app_ctx(ctx), name)
@@ -97,7 +118,7 @@ def agent_remove(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet
 @obj.command("add")
 def object_add(
     ctx: typer.Context,
-    name: str,
+    name: NameArg,
     color: ColorOpt = None,
     pos: PosOpt = None,
     category: CategoryOpt = None,
@@ -114,14 +135,17 @@ def object_add(
 @obj.command("set")
 def object_set(
     ctx: typer.Context,
-    name: str,
+    name: ObjArg,
     color: ColorOpt = None,
     pos: PosOpt = None,
     category: CategoryOpt = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Change an object's percepts (only those given; --category replaces the set)."""
+    """Change an object's percepts (only those given).
+
+    --category replaces the object's set of categories.
+    """
     from ownctl.app import things
 
     done = things.set_object(app_ctx(ctx), name, color, pos, category or [])
@@ -130,21 +154,33 @@ def object_set(
 
 @obj.command("list")
 def object_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """List the objects and their percepts (interaction times are absolute store times)."""
+    """List the objects, their percepts and their last touch."""
     from ownctl.app import things
 
     rows = things.list_objects(app_ctx(ctx))
-    cells = [[r["name"], r["color"], r["position"], r["categories"], r["last_touch"]] for r in rows]
+    cells = [[r["name"], r["color"], r["position"], r["categories"], _last_touch(r["last_touch"])]
+             for r in rows]
     emit(
         rows,
         json_out,
         quiet,
-        table("objects", ["name", "colour", "position", "categories", "last touch"], cells),
+        table("objects", ["name", "colour", "position", "categories", "last touch"], cells,
+              whole={"last touch"}),
     )
 
 
+def _last_touch(touches: dict[str, float]) -> str | None:
+    """Who touched the object last, and when (``object show`` and --json list every agent's touch)."""
+    if not touches:
+        return None
+    agent = max(touches, key=lambda a: (touches[a], a))
+    return f"{agent} {when(touches[agent])}"
+
+
 @obj.command("show")
-def object_show(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+def object_show(
+    ctx: typer.Context, name: ObjArg, json_out: JsonOpt = False, quiet: QuietOpt = False
+) -> None:
     """Show one object: percepts, permissions and who probably owns it."""
     from ownctl.app import things
 
@@ -152,7 +188,7 @@ def object_show(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet:
 
     def human() -> None:
         for key in ("name", "color", "position", "categories", "last_touch"):
-            typer.echo(f"{key:11} {fmt(data[key]) if data[key] not in (None, [], {}) else '-'}")
+            typer.echo(f"{key:11} {fmt(when(data[key])) if data[key] not in (None, [], {}) else '-'}")
         for p in data["permissions"]:
             typer.echo(f"permission  {p['id']}: {p['action']} = {fmt(p['value'])}")
         table(None, ["agent", "p", "source"], [[o["agent"], o["p"], o["source"]] for o in data["owners"]])()
@@ -161,7 +197,9 @@ def object_show(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet:
 
 
 @obj.command("remove")
-def object_remove(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+def object_remove(
+    ctx: typer.Context, name: ObjArg, json_out: JsonOpt = False, quiet: QuietOpt = False
+) -> None:
     """Forget an object with its beliefs and permissions."""
     from ownctl.app import things
 
@@ -172,13 +210,19 @@ def object_remove(ctx: typer.Context, name: str, json_out: JsonOpt = False, quie
 @obj.command("touch")
 def object_touch(
     ctx: typer.Context,
-    name: str,
-    by: Annotated[str, typer.Option("--by", help="The agent who interacted with the object.")],
-    at: Annotated[float | None, typer.Option("--at", help="Absolute store time (default: now).")] = None,
+    name: ObjArg,
+    by: Annotated[str, typer.Option("--by", metavar="AGENT", help="The agent who interacted with it.")],
+    at: Annotated[
+        float | None,
+        typer.Option("--at", metavar="SECONDS", help="When, in store seconds (default: now)."),
+    ] = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """Record that an agent interacted with an object (a percept of ownership prediction)."""
+    """Record that an agent touched an object.
+
+    How recently each agent touched an object is a percept of ownership prediction.
+    """
     from ownctl.app import things
 
     done = things.touch(app_ctx(ctx), name, by, at)
@@ -188,8 +232,8 @@ def object_touch(
 @area.command("add")
 def area_add(
     ctx: typer.Context,
-    name: str,
-    box: Annotated[str, typer.Option("--box", help="X0,Y0,X1,Y1 in workspace metres.")],
+    name: NameArg,
+    box: Annotated[str, typer.Option("--box", metavar="X0,Y0,X1,Y1", help="The box, in workspace metres.")],
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
@@ -215,7 +259,12 @@ def area_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = F
 
 
 @area.command("remove")
-def area_remove(ctx: typer.Context, name: str, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
+def area_remove(
+    ctx: typer.Context,
+    name: Annotated[str, typer.Argument(metavar="AREA", help="The area.")],
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
     """Forget an area (refused while a rule names it)."""
     from ownctl.app import things
 

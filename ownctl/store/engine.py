@@ -72,7 +72,7 @@ def locate(db: str | None) -> Location:
         return Location(f"sqlite:///{path}", path, explicit=True)
     try:
         url = make_url(db)
-    except ArgumentError:
+    except (ArgumentError, ValueError):  # ValueError: a port that is not a number
         raise StoreError(
             f"invalid database URL {db!r}; use a path or a URL such as sqlite:///ownctl.db"
         ) from None

@@ -4,16 +4,20 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
+from ownctl.humanize import iso
+
 if TYPE_CHECKING:
     from tests.cli.conftest import Ownctl
+
+T1000, T900 = iso(1000), iso(900)  # the store times the tests pin, as explanations print them
 
 
 def test_a_rule_decision_names_the_rule_and_the_atom_with_its_claim(table_world: Ownctl) -> None:
     table_world("forbid", "trash", "if", "ownedBy", "alexis", "--as", "xuan")
     text = table_world("explain", "trash", "wallet").stdout
     assert text.startswith("trash is forbidden on wallet: rule 1 'forbid trash if ownedBy alexis' holds with "
-                           "p=1 (>= 0.5); it was given by xuan at t=1000.")
-    assert "ownedBy(wallet, alexis) = 1 from a claim at t=1000 (p=1)." in text
+                           f"p=1 (>= 0.5); it was given by xuan at {T1000}.")
+    assert f"ownedBy(wallet, alexis) = 1 from a claim at {T1000} (p=1)." in text
 
 
 def test_a_predicted_owner_is_explained_as_a_prediction(table_world: Ownctl) -> None:
@@ -35,9 +39,9 @@ def test_inference_on_a_claim_names_the_claim_and_its_speaker(ownctl: Ownctl) ->
     data = ownctl.json("explain", "trash", "wallet")
     atom = data["atoms"][0]
     assert atom["source"] == "inference" and atom["claim"] == {"p": 0.6, "speaker": "agent1", "time": 900.0,
-                                                                "trust": 1.0}
+                                                                "time_iso": T900, "trust": 1.0}
     assert atom["because"] == ("inference (given the permissions on this object) on a claim by agent1 "
-                               "at t=900 (p=0.6)")
+                               f"at {T900} (p=0.6)")
     assert data["decided_by"] == "permission"
     assert "permission 1 'forbid trash on wallet'" in data["text"]
 
@@ -62,14 +66,14 @@ def test_a_forbidden_prerequisite_is_named(table_world: Ownctl) -> None:
     data = table_world.json("explain", "collect", "mug")
     assert data["decision"] == "forbidden" and data["decided_by"] == "prerequisite"
     assert data["text"].startswith("collect is forbidden on mug: its prerequisite pickUp is forbidden: "
-                                   "permission 1 'forbid pickUp on mug' from xuan at t=1000 forbids pickUp")
+                                   f"permission 1 'forbid pickUp on mug' from xuan at {T1000} forbids pickUp")
 
 
 def test_learned_rules_name_their_examples(table_world: Ownctl) -> None:
     table_world("forbid", "pickUp", "on", "mug")
     rule = next(s for s in table_world.json("explain", "pickUp", "wallet")["steps"]
                 if s["action"] == "pickUp")["rules"][0]
-    assert rule["text"] == "forbid pickUp" and rule["origin"] == "learned from the examples mug at t=1000"
+    assert rule["text"] == "forbid pickUp" and rule["origin"] == f"learned from the examples mug at {T1000}"
 
 
 def test_explain_keeps_the_conversation(table_world: Ownctl) -> None:

@@ -67,6 +67,7 @@ def test_oracle_corrections_are_stored_and_explain_later_decisions(ownctl: Ownct
     assert ownctl.json("perms", "list")
 
 
+@pytest.mark.slow
 def test_learning_persists_across_layouts(tmp_path: Path) -> None:
     """A second layout of the same kind of world, keeping what was learned, costs fewer mistakes."""
     first, second = [], []

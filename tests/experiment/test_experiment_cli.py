@@ -113,6 +113,7 @@ def test_a_different_norm_set_runs_end_to_end() -> None:
     assert res.exit_code == 0 and "blocks world only" in res.stdout
 
 
+@pytest.mark.slow
 def test_same_numbers_under_another_hash_seed() -> None:
     code = ("import json; from ownctl.app.experiment import run; "
             "print(json.dumps([c['groups'] for c in run('task', trials=2, seed=7).as_dict()['conditions']]))")

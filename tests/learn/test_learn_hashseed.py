@@ -16,6 +16,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[2]
 
 SCRIPT = r'''
@@ -95,6 +97,7 @@ print(json.dumps(out, sort_keys=True))
 '''
 
 
+@pytest.mark.slow
 def test_learned_rules_do_not_depend_on_the_hash_seed() -> None:
     procs = []
     for seed in ("0", "1", "2"):

@@ -11,6 +11,7 @@ from __future__ import annotations
 import time
 
 import numpy as np
+import pytest
 from problog import get_evaluatable
 from problog.program import PrologString
 
@@ -159,6 +160,7 @@ def test_problog_encoding_sanity() -> None:
     assert abs(got[0] - 0.58) < 1e-12 and abs(got[1] - 1.0) < 1e-12
 
 
+@pytest.mark.slow
 def test_p_forbidden_matches_problog_on_generated_programs() -> None:
     rng = np.random.default_rng(SEED)
     programs = queries = 0

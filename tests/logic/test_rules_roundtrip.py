@@ -3,6 +3,7 @@
 
 from __future__ import annotations
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
@@ -64,6 +65,7 @@ def test_printed_norm_parses_back_equal(sign: str, action: str, lits: list[Liter
         assert str(norm.rule) == text
 
 
+@pytest.mark.slow
 @RT
 @given(signs, actions, literal_sets)
 def test_printed_form_is_in_documented_order(sign: str, action: str, lits: list[Literal]) -> None:
@@ -86,6 +88,7 @@ def test_printed_form_is_in_documented_order(sign: str, action: str, lits: list[
     assert keys == sorted(keys) and len(set(keys)) == len(keys)
 
 
+@pytest.mark.slow
 @RT
 @given(signs, actions, literal_sets, st.randoms(use_true_random=False), st.integers(0, 3))
 def test_text_is_invariant_under_permutation_and_duplication(sign, action, lits, rnd, dups) -> None:
