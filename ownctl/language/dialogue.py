@@ -87,7 +87,7 @@ def ask_owned(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 @GRAMMAR.rule(
     "question",
     r"what (?:else )?(?:are|am)(?: not)? (?:you|i) (?:not )?(?:allowed|permitted|supposed) to do with <OBJ>",
-    r"what (?:else )?(?:can|may|could|must|should) (?:you|i)(?: not)? do with <OBJ>",
+    r"what (?:else )?(?:can|may|could|must|should)(?: not)? (?:you|i)(?: not)? do with <OBJ>",
     r"what (?:is|are) (?:it|you) (?:not )?(?:ok|fine|allowed) (?:for you )?to do with <OBJ>",
     r"what (?:are you|you are) (?:forbidden|not allowed) to do with <OBJ>",
     r"what (?:may|can) (?:you|i) do to <OBJ>",

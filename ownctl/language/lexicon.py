@@ -92,6 +92,13 @@ DISCOURSE = frozenset({
     "anyway", "oh", "ah", "alright", "actually", "listen", "look", "see", "just", "and also",
 })
 
+#: When something happened, said after a statement without changing what it stores ("I gave it to
+#: Jake yesterday"); "now" is not among them: "it's Jake's now" means Jake's alone.
+TIME_WORDS = frozenset({
+    "yesterday", "today", "earlier", "earlier today", "this morning", "last week", "last night",
+    "a while ago", "recently", "already", "just now", "the other day", "a minute ago", "before",
+})
+
 #: Adjectives that may describe an object without naming it ("the little mug").
 ADJECTIVES = frozenset({
     "little", "small", "big", "large", "old", "new", "empty", "full", "dirty", "clean", "broken",

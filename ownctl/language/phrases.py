@@ -41,6 +41,7 @@ _TAIL = re.compile(
     rf"(?: and (?P<also>{_OWNER}))?"
     r"(?: too| as well| also)?"
     rf"(?: (?:and |but )?not (?P<other>{_OWNER})(?: anymore| any more)?)?"
+    r"(?: either| anymore| any more| now| then)?"
 )
 
 

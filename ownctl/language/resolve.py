@@ -144,6 +144,8 @@ class Resolver:
             name = self._objects[noun.lower()]
             self._check_adjectives(name, adjectives)
             return name
+        if (noun in GENERIC_NOUNS or self.is_class_noun(noun)) and adjectives and det not in ("this", "that"):
+            return self._described(noun, adjectives, phrase)  # "the yellow block", "the red one"
         if noun in GENERIC_NOUNS and (det in ("this", "that") or self.ctx.about is not None):
             if det not in ("this", "that", "") and not adjectives:
                 raise Decline(phrase)  # "the stuff", "my things": a class
@@ -167,6 +169,19 @@ class Resolver:
         if det in PRONOUNS:
             return self.pronoun(det)
         return None
+
+    def _described(self, noun: str, adjectives: list[str], phrase: str) -> str:
+        """The one object a description picks out by its percepts ("the yellow block": the only
+        yellow object in category block, or the only yellow one if "block" is no category)."""
+        colours = [c for w in adjectives if (c := self.colour(w)) is not None]
+        if len(colours) != len(adjectives) or len(set(colours)) != 1:
+            raise Decline(phrase)
+        category = self.category_noun(noun)
+        lits = [Literal("isColored", colours[0]), *([Literal("inCategory", category)] if category else [])]
+        found = self.select(tuple(lits), phrase)
+        if len(found) != 1:
+            raise MissingContext(f"which one is {phrase!r}? it could be {', '.join(found)}")
+        return found[0]
 
     def _check_adjectives(self, name: str, adjectives: list[str]) -> None:
         facts = self.ctx.facts.get(name)

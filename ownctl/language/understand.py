@@ -30,7 +30,7 @@ from dataclasses import dataclass, replace
 
 from ownctl.errors import OwnctlError
 from ownctl.language import dialogue, spelling, statements
-from ownctl.language.context import Context, NotUnderstood, Understanding
+from ownctl.language.context import Context, MissingContext, NotUnderstood, Understanding
 from ownctl.language.grammar import GrammarRule, first_match
 from ownctl.language.instructions import Claim, Instruction, Introduce, NormInstruction, Permission, Skip
 from ownctl.language.lexicon import (
@@ -41,6 +41,7 @@ from ownctl.language.lexicon import (
     HEDGES,
     NOBODY_WORDS,
     SPEAKER_WORDS,
+    TIME_WORDS,
     alternation,
     hedge_of,
 )
@@ -66,6 +67,7 @@ _DISCOURSE = re.compile(rf"^(?:{alternation(DISCOURSE)} )+")
 _HEDGE = alternation(tuple(HEDGES))
 _LEAD_HEDGE = re.compile(rf"^(?P<h>{_HEDGE}) ")
 _TAIL_HEDGE = re.compile(rf" (?P<h>{_HEDGE})(?: so)?$")
+_TIME_TAIL = re.compile(rf" {alternation(TIME_WORDS)}$")
 #: Words that carry meaning: a piece holding one is never skipped.
 _CONTENT = frozenset(
     {w for phrase in ACTION_PHRASES for w in phrase.split() if w not in ("me", "up", "out", "down")}
@@ -110,6 +112,9 @@ def _variants(text: str) -> list[tuple[str, float | None, str]]:
     if (m := _DISCOURSE.match(text)) and m.end() < len(text):
         bare = text[m.end():]
         out.append((bare, None, m.group().strip()))
+    if (t := _TIME_TAIL.search(bare)) and t.start() > 0:
+        bare = bare[:t.start()]
+        out.append((bare, None, t.group().strip()))
     for pattern in (_LEAD_HEDGE, _TAIL_HEDGE):
         if (h := pattern.search(bare)) and len(h.group()) < len(bare):
             rest = (bare[:h.start()] + " " + bare[h.end():]).strip()
@@ -130,20 +135,26 @@ def _parse_one(utterance: str, ctx: Context) -> Understanding | None:
     text = normalize(utterance)
     if not text:
         raise NotUnderstood(utterance, "there is nothing to understand")
-    resolver = Resolver(ctx)
-    try:
-        for variant, cap, _ in _variants(text):
+    first: OwnctlError | None = None  # a variant's error is reported only if no variant parses
+    for variant, cap, _ in _variants(text):
+        resolver = Resolver(ctx)
+        try:
             found = first_match(RULES, variant, resolver)
-            if found is None:
-                continue
-            rule, instructions = found
-            if cap is not None:
-                instructions = _hedged(instructions, cap)
-            intent = _intent(rule, instructions)
-            return Understanding(intent, instructions, reply(intent, instructions), rule.name,
-                                 resolver.topic)
-    except NotUnderstood as err:
-        raise NotUnderstood(utterance, err.detail) from None
+        except NotUnderstood as err:
+            first = first or NotUnderstood(utterance, err.detail)
+            continue
+        except OwnctlError as err:
+            first = first or err
+            continue
+        if found is None:
+            continue
+        rule, instructions = found
+        if cap is not None:
+            instructions = _hedged(instructions, cap)
+        intent = _intent(rule, instructions)
+        return Understanding(intent, instructions, reply(intent, instructions), rule.name, resolver.topic)
+    if first is not None:
+        raise first
     return None
 
 
@@ -263,7 +274,7 @@ def _pieces(utterance: str, ctx: Context) -> list[_Piece]:
                 continue
             except OwnctlError as err:
                 errors.append(err)
-                named_wrong = named_wrong or j == i + 1
+                named_wrong = named_wrong or (j == i + 1 and not isinstance(err, MissingContext))
                 continue
             if head is None:
                 continue
