@@ -41,7 +41,8 @@ FRAGMENTS: dict[str, str] = {
               r"i forbid you to|do not you dare) ",
     # a permission ("you can", "it's ok to", "feel free to", ...) followed by a space
     "ALLOW": r"(?:you (?:can|may|are allowed to|are permitted to|are free to|have permission to)"
-             r"(?: always| go ahead and)?|feel free to|go ahead and|it is (?:ok|fine|allowed) (?:for you )?to|"
+             r"(?: always| go ahead and)?|feel free to|go ahead and|"
+             r"it is (?:ok|fine|allowed) (?:for you )?to|"
              r"i allow you to|i permit you to|you have my permission to) ",
     # the opening of a reprimand ("no", "hey", "stop", "don't", ...), each word followed by a space
     "REPRIMAND": r"(?:(?:no|nope|hey|stop|wait|whoa|oi|careful|do not|stop it|stop that|"

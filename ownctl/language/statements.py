@@ -157,8 +157,8 @@ def claim_owns(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 
 @GRAMMAR.rule(
     "claim",
-    r"<THINK>(?P<obj>(?:this|that|it)(?: one)?|these|those|they) (?:is|are) (?P<neg>not )?(?P<who>my|<NAME> 's) "
-    r"(?P<noun><NAME>)"
+    r"<THINK>(?P<obj>(?:this|that|it)(?: one)?|these|those|they) (?:is|are) (?P<neg>not )?"
+    r"(?P<who>my|<NAME> 's) (?P<noun><NAME>)"
     r"(?P<tail> now| alone| too)?",
 )
 def claim_my_noun(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
