@@ -205,8 +205,8 @@ def class_literals(phrase: str, r: Resolver) -> tuple[Literal, ...] | None:
     kind: list[Literal] = []
     word = phrase[pos:].split(" ", 1)[0]
     category = r.category_noun(word) if r.ctx.categories else None
-    if category is not None and word == category and det in ("", "the "):
-        category = None  # "the cup" is one object; "cups", "any cup" are a class
+    if category is not None and word == category and det == "the " and r.is_object(word):
+        category = None  # "the cup" is one object; "cups", "any cup", "the kitchenware" are a class
     if category is not None:
         kind, end, head_word = [Literal("inCategory", category)], pos + len(word), word
     elif (head := _HEAD.match(phrase, pos)) is not None:

@@ -19,8 +19,8 @@ Then, if nothing parses, misspelt words are corrected (:mod:`ownctl.language.spe
 utterance is tried once more; the reply says how each was read.
 
 Time is linear in the length: a piece spans at most :data:`MAX_PIECE_CHUNKS` punctuation-delimited
-chunks and :data:`MAX_PIECE_CHARS` characters (two sentences at most, unless it is short), and an
-utterance longer than :data:`MAX_CHARS` characters is refused at once.
+chunks and :data:`MAX_PIECE_CHARS` characters, and an utterance longer than :data:`MAX_CHARS`
+characters is refused at once. A piece holds one sentence unless it is short or a reprimand.
 """
 
 from __future__ import annotations
@@ -55,10 +55,12 @@ RULES: tuple[GrammarRule, ...] = (*statements.GRAMMAR.rules, *dialogue.GRAMMAR.r
 #: The longest utterance understood (characters); longer ones are refused at once.
 MAX_CHARS = 4000
 #: A piece (one sentence, as parsed) spans at most this many chunks and characters.
-MAX_PIECE_CHUNKS = 4
+MAX_PIECE_CHUNKS = 12
 MAX_PIECE_CHARS = 200
-#: A piece longer than this spans at most two sentences (shorter ones may hold stray punctuation).
-SHORT_PIECE_CHARS = 80
+#: A piece longer than this holds one sentence, unless it is a reprimand ("That's mine. Don't throw
+#: it away!") of at most twice this length; a shorter one may hold stray punctuation ("can you
+#: throw! this away?").
+SHORT_PIECE_CHARS = 40
 
 _CHUNK_END = re.compile(r"[.!?;,:]+|\s[-\u2013\u2014]+\s|[\u2013\u2014]")
 _SENTENCE_END = re.compile(r"[.!?;]")
@@ -201,14 +203,15 @@ def _chunks(utterance: str) -> list[tuple[int, int]]:
     return list(zip(cuts, cuts[1:], strict=False))
 
 
-_Cost = tuple[int, int]  # (pieces skipped, pieces)
+_Cost = tuple[int, int, int]  # (pieces skipped, pieces, sentence ends inside pieces)
 
 
 @dataclass
 class _Path:
     """The best way found to understand the chunks before one boundary: its last piece and the
     path before it (a chain, so extending a path costs nothing), the context it leaves, a
-    fingerprint of what it stores, and another way as good that would store something else."""
+    fingerprint of what it stores in order (equal fingerprints store the same), and another way as
+    good that would store something else."""
 
     cost: _Cost
     ctx: Context
@@ -217,13 +220,14 @@ class _Path:
     stored: int = 0
     other: _Path | None = None
 
-    def then(self, piece: _Piece, skipped: bool, ctx: Context) -> _Path:
-        """This path followed by ``piece``."""
-        cost = (self.cost[0] + 1, self.cost[1]) if skipped else (self.cost[0], self.cost[1] + 1)
+    def then(self, piece: _Piece, skipped: bool, ctx: Context, crosses: bool = False) -> _Path:
+        """This path followed by ``piece`` (which may hold a sentence end: "That's mine. Don't!")."""
+        skip, count, crossed = self.cost
+        cost = (skip + skipped, count + (not skipped), crossed + crosses)
         stored = self.stored
         for text in piece.understood.texts():
             stored = hash((stored, text))
-        other = None if self.other is None else self.other.then(piece, skipped, ctx)
+        other = None if self.other is None else self.other.then(piece, skipped, ctx, crosses)
         return _Path(cost, ctx, self, piece, stored, other)
 
     def pieces(self) -> list[_Piece]:
@@ -241,30 +245,34 @@ def _offer(paths: list[_Path | None], j: int, path: _Path) -> None:
     old = paths[j]
     if old is None or path.cost < old.cost:
         paths[j] = path
-    elif path.cost == old.cost and old.other is None and path.stored != old.stored:
-        old.other = path
+    elif (path.cost == old.cost and old.other is None and path.stored != old.stored
+          and set(_stored(path.pieces())) != set(_stored(old.pieces()))):
+        old.other = path  # the same things in another order is no second reading
 
 
 def _pieces(utterance: str, ctx: Context) -> list[_Piece]:
     """Split at punctuation into the fewest pieces that each parse, skipping only pieces that say
-    nothing (dynamic programming from left to right: each boundary keeps its best way there, and a
-    piece spans a bounded number of chunks, so the time is linear). Raises NotUnderstood naming the
-    first piece that does not parse, or showing two readings when two best splits would store
-    different things."""
+    nothing, and of those splits the one whose pieces hold fewest sentence ends (dynamic
+    programming from left to right: each boundary keeps its best way there, and a piece spans a
+    bounded number of characters, so the time is linear). Raises NotUnderstood naming the first
+    piece that does not parse, or showing two readings when two best splits would store different
+    things."""
     spans = _chunks(utterance)
     n = len(spans)
     errors: list[OwnctlError] = []  # from pieces that matched a form but named something wrong
-    paths: list[_Path | None] = [_Path((0, 0), ctx), *([None] * n)]
+    paths: list[_Path | None] = [_Path((0, 0, 0), ctx), *([None] * n)]
     for i in range(n):
         here = paths[i]
         if here is None:
             continue
-        start, named_wrong, sentences = spans[i][0], False, 0
+        start, named_wrong = spans[i][0], False
         for j in range(i + 1, min(n, i + MAX_PIECE_CHUNKS) + 1):
             text = utterance[start:spans[j - 1][1]]
-            if len(text) > MAX_PIECE_CHARS or (sentences > 1 and len(text) > SHORT_PIECE_CHARS):
+            if len(text) > MAX_PIECE_CHARS:
                 break
-            sentences += bool(_SENTENCE_END.search(utterance, spans[j - 1][0], spans[j - 1][1]))
+            crosses = bool(_SENTENCE_END.search(utterance, start, spans[j - 2][1])) if j > i + 1 else False
+            if crosses and len(text) > 2 * SHORT_PIECE_CHARS:
+                break
             if not normalize(text):
                 _offer(paths, j, here)
                 continue
@@ -276,9 +284,9 @@ def _pieces(utterance: str, ctx: Context) -> list[_Piece]:
                 errors.append(err)
                 named_wrong = named_wrong or (j == i + 1 and not isinstance(err, MissingContext))
                 continue
-            if head is None:
+            if head is None or (crosses and len(text) > SHORT_PIECE_CHARS and head.intent != "reprimand"):
                 continue
-            _offer(paths, j, here.then(_Piece(head), False, _after(here.ctx, head)))
+            _offer(paths, j, here.then(_Piece(head), False, _after(here.ctx, head), crosses))
         text = utterance[start:spans[i][1]]
         if normalize(text) and not named_wrong and not _has_content(text, here.ctx):  # says nothing
             skipped = _Piece(Understanding("greeting", (), ""), text.strip(" .!?;,:-\u2013\u2014"))
@@ -287,8 +295,8 @@ def _pieces(utterance: str, ctx: Context) -> list[_Piece]:
     if result is None:
         if errors:
             raise errors[0]
-        bad = next((utterance[a:b] for a, b in spans
-                    if normalize(utterance[a:b]) and not _parses(utterance[a:b], ctx)), "")
+        bad = next((utterance[a:b] for a, b in spans if normalize(utterance[a:b])
+                    and _has_content(utterance[a:b], ctx) and not _parses(utterance[a:b], ctx)), "")
         raise NotUnderstood(utterance, f"in particular {bad.strip(' .!?;,:-')!r}" if bad else "")
     if result.other is not None:
         readings = " or ".join(f"[{'; '.join(_stored(p.pieces())) or 'nothing'}]"
