@@ -20,7 +20,7 @@ from itertools import product
 
 from ownctl.errors import RuleSyntaxError
 from ownctl.language.context import NotUnderstood
-from ownctl.language.grammar import Grammar, group
+from ownctl.language.grammar import FRAGMENTS, Grammar, group
 from ownctl.language.instructions import Claim, Instruction, NormInstruction, Permission, Skip
 from ownctl.language.lexicon import DEICTIC, GERUNDS, NOT_NOUNS, PASSIVES, actions_regex, hedge_of
 from ownctl.language.phrases import Owned, class_alternatives, condition_phrase, owners
@@ -39,6 +39,7 @@ _GERUND = rf"(?P<act>{actions_regex(forms=GERUNDS)})"
 _PASSIVE = rf"(?P<act>{actions_regex(forms=PASSIVES)})"
 _OK = r"(?:ok|fine|allowed|safe|alright|permitted|free)"
 _AND_NOR = re.compile(r" (?:and|nor) ")
+_PROHIBITION = re.compile(FRAGMENTS["FORBID"])
 #: A class or subject phrase longer than this is no phrase (the rule declines at once).
 MAX_PHRASE_WORDS = 14
 
@@ -59,12 +60,6 @@ def _claims(obj: str, found: list[Owned]) -> list[Claim]:
     return [Claim(obj, o.agent, o.p, o.negated, o.exclusive) for o in found]
 
 
-def _action(m: re.Match[str], r: Resolver, said: str = "that") -> str:
-    """The action named in the utterance, else the robot's current action."""
-    phrase = group(m, "act")
-    return r.action(phrase) if phrase else r.current_action(said)
-
-
 def _acting(r: Resolver) -> bool:
     """True if the robot is doing something now (so a reprimand stops it)."""
     return r.ctx.action is not None
@@ -78,15 +73,14 @@ def _owner_claim(phrase: str, obj: str, r: Resolver) -> list[Claim]:
 
 # -- reprimands ------------------------------------------------------------------------------
 
-def _reprimand(obj: str, found: list[Owned], action: str | None, r: Resolver,
-               stop: bool) -> tuple[Instruction, ...]:
+def _reprimand(obj: str, found: list[Owned], action: str | None, r: Resolver) -> tuple[Instruction, ...]:
     """Stop (if acting), the claims, and -- when there is an action -- the permission and norms."""
     claims = _claims(obj, found)
     if action is None:
         return tuple(claims)
     norms = [NormInstruction(Norm("forbid", Rule(action, (Literal("ownedBy", o.agent),))))
              for o in found if not o.negated]
-    skip = [Skip(obj)] if stop and _acting(r) else []
+    skip = [Skip(obj)] if _acting(r) else []
     return (*skip, *claims, Permission(action, obj, True), *norms)
 
 
@@ -105,7 +99,7 @@ def reprimand_claim(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | 
     obj = r.obj(m["obj"])
     named = group(m, "act")
     action = r.action(named) if named else (r.ctx.action and r.current_action())
-    return _reprimand(obj, found, action, r, stop=True)
+    return _reprimand(obj, found, action, r)
 
 
 @GRAMMAR.rule(
@@ -120,7 +114,7 @@ def reprimand_my_noun(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] 
     if not found:
         return None
     obj = r.obj(m["noun"]) if r.is_object(m["noun"]) else r.about(m["obj"])
-    return _reprimand(obj, found, r.ctx.action and r.current_action(), r, stop=True)
+    return _reprimand(obj, found, r.ctx.action and r.current_action(), r)
 
 
 @GRAMMAR.rule("reprimand", rf"{_STOP}(?: {_STOP})*", "<FORBID><DO>")
@@ -405,17 +399,10 @@ def only_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 @GRAMMAR.rule("norm", rf"(?:if|when|whenever) (?P<cond>.+?) (?:then )?(?P<sign><FORBID>|<ALLOW>)<ACT> {_IT}")
 def fronted_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"If something belongs to someone, don't throw it away", "If it's Xuan's, don't collect it"."""
-    sign = "forbid" if re.fullmatch(expand_fragment("FORBID"), m["sign"]) else "allow"
+    sign = "forbid" if _PROHIBITION.fullmatch(m["sign"]) else "allow"
     action = r.action(m["act"])
     alternatives = _alternatives(condition_phrase(m["cond"]), sign, action, r)
     return None if alternatives is None else _rules(sign, action, alternatives)
-
-
-def expand_fragment(name: str) -> str:
-    """The regular expression of one grammar fragment."""
-    from ownctl.language.grammar import FRAGMENTS
-
-    return FRAGMENTS[name]
 
 
 def _subject_norm(sign: str, phrase: str, act: str, r: Resolver) -> tuple[Instruction, ...] | None:
@@ -444,7 +431,7 @@ def subject_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | Non
     away"; about one object it is a permission ("The mug must not be thrown away")."""
     sign_words = group(m, "sign")
     if sign_words is not None:
-        sign = "forbid" if re.fullmatch(expand_fragment("FORBID"), sign_words) else "allow"
+        sign = "forbid" if _PROHIBITION.fullmatch(sign_words) else "allow"
     else:
         sign = "forbid" if group(m, "neg") else "allow"
     return _subject_norm(sign, m["cls"], group(m, "act") or "trash", r)
