@@ -22,6 +22,9 @@ from ownctl.app.context import AppContext
 from ownctl.errors import OwnctlError
 from ownctl.humanize import plural
 from ownctl.language import (
+    OBJECT_ACTIONS,
+    AskActions,
+    AskOwned,
     AskOwner,
     AskPermitted,
     AskWhy,
@@ -38,8 +41,10 @@ from ownctl.language import (
     teaching_order,
     understand,
 )
+from ownctl.language.context import Facts
 from ownctl.language.lexicon import COLORS
 from ownctl.logic.names import check_name
+from ownctl.world.model import Area
 
 
 @dataclass
@@ -82,6 +87,12 @@ def language_context(ctx: AppContext, speaker: str | None, about: str | None) ->
         if about is not None:
             tx.things.object(about)  # an unknown --about is an error naming the known objects
         objects = tx.things.objects()
+        categories = tx.things.categories()
+        boxes = [Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.world.areas()]
+        facts = {o.name: Facts(o.color, frozenset(b.name for b in boxes if o.x is not None and o.y is not None
+                                                  and bool(b.contains([[o.x, o.y]])[0])),
+                               frozenset(categories.get(o.id, ())))
+                 for o in objects}
         return Context(
             speaker=speaker if speaker is not None else talk.speaker,
             about=about if about is not None else talk.target,
@@ -89,8 +100,9 @@ def language_context(ctx: AppContext, speaker: str | None, about: str | None) ->
             agents=frozenset(a.name for a in tx.world.agents()),
             objects=frozenset(o.name for o in objects),
             colors=COLORS | {o.color for o in objects if o.color},
-            areas=frozenset(a.name for a in tx.world.areas()),
-            categories=frozenset(c for cats in tx.things.categories().values() for c in cats),
+            areas=frozenset(b.name for b in boxes),
+            categories=frozenset(c for cats in categories.values() for c in cats),
+            facts=facts,
         )
 
 
@@ -194,6 +206,29 @@ class _Turn:
         return answer, result.data
 
 
+    def _askowned(self, ins: AskOwned) -> tuple[str, dict[str, Any]]:
+        from ownctl.app.query import owned_by
+
+        rows = owned_by(self.ctx, ins.agent)
+        things = ", ".join(f"{r['object']} (p={r['p']:.2g})" for r in rows)
+        answer = f"{ins.agent} probably owns {things}." if rows else f"I know of nothing {ins.agent} owns."
+        self.report.answers.append(answer)
+        return answer, {"agent": ins.agent, "objects": rows}
+
+    def _askactions(self, ins: AskActions) -> tuple[str, dict[str, Any]]:
+        from ownctl.app.decide import check
+        from ownctl.language.instructions import verb
+
+        self.report.target = ins.object
+        results = [check(self.ctx, action, ins.object, record=False) for action in OBJECT_ACTIONS]
+        may = [verb(r.data["action"]) for r in results if not r.forbidden]
+        may_not = [f"{verb(r.data['action'])} ({r.reason})" for r in results if r.forbidden]
+        parts = [f"I may: {', '.join(may)}" if may else "",
+                 f"I may not: {'; '.join(may_not)}" if may_not else ""]
+        answer = f"With {ins.object}, " + ". ".join(p for p in parts if p) + "."
+        self.report.answers.append(answer)
+        return answer, {"object": ins.object, "checks": [r.data for r in results]}
+
     def _askwhy(self, ins: AskWhy) -> tuple[str, dict[str, Any]]:
         data = _why(self.ctx, ins)
         self.report.answers.append(data["text"])
@@ -215,6 +250,8 @@ USE_CASES: dict[type, Callable[[_Turn, Any], tuple[str, dict[str, Any]]]] = {
     AskPermitted: _Turn._askpermitted,
     Request: _Turn._askpermitted,
     AskWhy: _Turn._askwhy,
+    AskOwned: _Turn._askowned,
+    AskActions: _Turn._askactions,
     RunTask: _Turn._runtask,
 }
 

@@ -9,7 +9,10 @@ decomposition of a reprimand: ``skip wallet``, ``claim wallet casey``, ``forbid 
 
 from ownctl.language.context import Context, MissingContext, NotUnderstood, Understanding
 from ownctl.language.instructions import (
+    OBJECT_ACTIONS,
     TASKS,
+    AskActions,
+    AskOwned,
     AskOwner,
     AskPermitted,
     AskWhy,
@@ -29,7 +32,10 @@ from ownctl.language.understand import RULES, understand
 __all__ = [
     "teaching_order",
     "RULES",
+    "OBJECT_ACTIONS",
     "TASKS",
+    "AskActions",
+    "AskOwned",
     "AskOwner",
     "AskPermitted",
     "AskWhy",

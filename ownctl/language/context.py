@@ -2,11 +2,23 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 from ownctl.errors import OwnctlError
 from ownctl.language.instructions import Instruction
 from ownctl.language.lexicon import COLORS, EXAMPLES
+
+
+@dataclass(frozen=True)
+class Facts:
+    """What the robot perceives of one object, for phrases that pick objects by their percepts
+    ("the red mug", "everything on the shelf", "the blocks"): its colour, the areas it lies in and
+    its categories."""
+
+    color: str | None = None
+    areas: frozenset[str] = frozenset()
+    categories: frozenset[str] = frozenset()
 
 
 @dataclass(frozen=True)
@@ -19,6 +31,8 @@ class Context:
     are matched case-insensitively against ``agents``, ``objects``, ``colors``, ``areas`` and
     ``categories`` and returned in their stored spelling. Empty ``areas``/``categories`` mean
     "not known": any valid name is then accepted after "in the ... area" / "in category ...".
+    ``facts`` gives each object's percepts (objects without facts cannot be picked by a class
+    phrase); ``mentioned`` is the agent a "he"/"she" refers to (the last one named before).
     """
 
     speaker: str | None = None
@@ -29,6 +43,8 @@ class Context:
     colors: frozenset[str] = COLORS
     areas: frozenset[str] = frozenset()
     categories: frozenset[str] = frozenset()
+    facts: Mapping[str, Facts] = field(default_factory=dict, compare=False)
+    mentioned: str | None = None
 
 
 @dataclass(frozen=True)
@@ -45,6 +61,7 @@ class Understanding:
     instructions: tuple[Instruction, ...]
     reply: str
     form: str = ""
+    topic: str | None = None  # an object named alone ("The scarf?"): what the next sentence is about
 
     def texts(self) -> tuple[str, ...]:
         """The instructions as CLI instruction texts (what the user is shown)."""

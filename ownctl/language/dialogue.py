@@ -14,6 +14,8 @@ import re
 from ownctl.language.context import NotUnderstood
 from ownctl.language.grammar import Grammar, group
 from ownctl.language.instructions import (
+    AskActions,
+    AskOwned,
     AskOwner,
     AskPermitted,
     AskWhy,
@@ -30,10 +32,14 @@ GRAMMAR = Grammar()
 _TASK_OPENING = r"(?:(?:can|could|would|will) you |go |go and |now |let us |time to |i want you to |" \
                 r"you should |you can )?"
 _ALL = (
-    r"(?:everything|it all|all of it|all(?: of)?(?: the)?"
-    r"(?: (?:objects|blocks|things|stuff|items|cubes))?)"
+    r"(?:everything|it all|all of it|all of this|all this|all that|"
+    r"all(?: of)?(?: the| this| that| these| those)?"
+    r"(?: (?:objects|blocks|things|stuff|items|cubes|junk|mess))?)(?: up| away| out| off)?"
 )
-_PLACE = r"(?: (?:off )?(?:the|this|your|my) (?:table|workspace|desk|work area|surface|area))?"
+_PLACE = r"(?: (?:off |up )?(?:the|this|your|my) (?:table|workspace|desk|work area|surface|area)" \
+         r"(?: (?:into|in) the (?:trash|bin))?)?"
+_TASK_END = r"(?: (?:now|for me|right now|please))?"
+_QUESTION_LEAD = r"(?:(?:do you know|can you tell me|could you tell me|tell me|i wonder|i want to know) )?"
 _GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"
 
 
@@ -41,25 +47,61 @@ _GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"
 
 @GRAMMAR.rule(
     "question",
-    r"whose (?:(?P<noun><NAME>) )?is <OBJ>",
-    r"who (?:owns|is the owner of|has) <OBJ>",
-    r"who does <OBJ> belong to",
-    r"to whom does <OBJ> belong",
-    r"who is <OBJ> owned by",
-    r"(?:is|are) <OBJ> (?:mine|<NAME> 's|owned(?: by <NAME>)?)",
-    r"does <OBJ> belong to <NAME>",
-    r"(?:do|does) <NAME> own <OBJ>",
+    _QUESTION_LEAD + r"whose (?:(?P<noun><NAME>) )?(?:is|are) <OBJ>",
+    _QUESTION_LEAD + r"who (?:owns|is the owner of|has|is the owner of|are the owners of) <OBJ>",
+    _QUESTION_LEAD + r"who does <OBJ> belong to",
+    _QUESTION_LEAD + r"to whom does <OBJ> belong",
+    _QUESTION_LEAD + r"who is <OBJ> owned by",
+    _QUESTION_LEAD + r"(?:is|are) <OBJ> (?:mine|<NAME> 's|owned(?: by <NAME>)?)(?: or (?:mine|<NAME> 's))*",
+    _QUESTION_LEAD + r"does <OBJ> belong to (?:me|<NAME>)(?: or (?:me|<NAME>))*",
+    _QUESTION_LEAD + r"(?:do|does) (?:anyone|someone|anybody|<NAME>) own <OBJ>",
+    _QUESTION_LEAD + r"(?:is|are) <OBJ> owned by (?:anyone|someone)",
+    _QUESTION_LEAD + r"whose (?:(?P<noun2><NAME>) )?<OBJ> (?:is|are)",
+    _QUESTION_LEAD + r"who <OBJ> belongs to",
+    _QUESTION_LEAD + r"who owns <OBJ>",
 )
 def ask_owner(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
-    """"Whose is this?", "Who owns that?", "Who does this belong to?", "Is this Jake's?"."""
-    noun = group(m, "noun")
+    """"Whose is this?", "Who owns that?", "Who does this belong to?", "Is this Jake's?", "Do you
+    know whose wallet this is?"."""
+    noun = group(m, "noun") or group(m, "noun2")
     obj = r.obj(noun) if noun and r.is_object(noun) else r.obj(m["obj"])
     return (AskOwner(obj),)
 
 
 @GRAMMAR.rule(
     "question",
+    r"what (?:do|does) (?P<who>i|<NAME>) own",
+    r"what (?:is|are) (?P<who>mine|<NAME> 's)",
+    r"what (?:belongs|belong) to (?P<who>me|<NAME>)",
+    r"(?:which|what) (?:things|objects|stuff|items|ones) (?:belong|belongs) to (?P<who>me|<NAME>)",
+    r"(?:which|what) (?:things|objects|items|ones) (?:do|does) (?P<who>i|<NAME>) own",
+    r"(?:what|which things) (?:is|are) owned by (?P<who>me|<NAME>)",
+)
+def ask_owned(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"What do I own?", "What does Casey own?", "What's mine?", "Which things belong to Jake?"."""
+    word = m["who"]
+    who = r.owner("me" if word in ("i", "mine") else word)
+    return None if who.startswith("\0") or who == "any" else (AskOwned(who),)
+
+
+@GRAMMAR.rule(
+    "question",
+    r"what (?:else )?(?:are|am)(?: not)? (?:you|i) (?:not )?(?:allowed|permitted|supposed) to do with <OBJ>",
+    r"what (?:else )?(?:can|may|could|must|should)(?: not)? (?:you|i)(?: not)? do with <OBJ>",
+    r"what (?:is|are) (?:it|you) (?:not )?(?:ok|fine|allowed) (?:for you )?to do with <OBJ>",
+    r"what (?:are you|you are) (?:forbidden|not allowed) to do with <OBJ>",
+    r"what (?:may|can) (?:you|i) do to <OBJ>",
+)
+def ask_actions(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"What are you not allowed to do with the book?", "What can you do with the mug?"."""
+    return (AskActions(r.obj(m["obj"])),)
+
+
+@GRAMMAR.rule(
+    "question",
     r"why (?:can|could|may|would|will|did|do|are|is|must|should)(?: not)? (?:you|it)(?: not)? "
+    r"(?:(?:allowed|permitted|forbidden|able) to |be )?<ACT> <OBJ>",
+    r"why (?:you|it) (?:can|could|may|would|will|did|do|are|is|must|should) not "
     r"(?:(?:allowed|permitted|forbidden|able) to |be )?<ACT> <OBJ>",
 )
 def ask_why_action(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
@@ -78,8 +120,9 @@ def ask_why(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     r"(?:can|may) you <ACT> <OBJ>",
     r"are you (?:allowed|permitted|able) to <ACT> <OBJ>",
     r"(?:are you|is it) (?:not allowed|forbidden) (?:for you )?to <ACT> <OBJ>",
-    r"is it (?:ok|fine|allowed) (?:for you )?to <ACT> <OBJ>",
+    r"is it (?:ok|fine|allowed|alright|safe) (?:for you )?to <ACT> <OBJ>",
     r"(?:can|may) you <DO>",
+    r"(?:is|are) <OBJ> (?:ok|fine|allowed|safe) (?:for you )?to <ACT>(?: it| them)?",
 )
 def ask_permitted(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Can you throw this away?", "Are you allowed to trash this?", "Can you do that?"."""
@@ -107,9 +150,9 @@ def introduce(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 
 @GRAMMAR.rule(
     "task",
-    rf"{_TASK_OPENING}{actions_regex('trash')} {_ALL}",
-    rf"{_TASK_OPENING}(?:clear|clean up|clean|empty|clear off|clear up){_PLACE}",
-    rf"{_TASK_OPENING}clear everything(?: away| off)?",
+    rf"{_TASK_OPENING}{actions_regex('trash')} {_ALL}{_PLACE}{_TASK_END}",
+    rf"{_TASK_OPENING}(?:clear|clean up|clean|empty|clear off|clear up){_PLACE}{_TASK_END}",
+    rf"{_TASK_OPENING}clear everything(?: away| off)?{_TASK_END}",
 )
 def trash_all(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Throw everything away", "Trash everything", "Clear the table", "Clean up the workspace"."""
@@ -118,15 +161,19 @@ def trash_all(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
 
 @GRAMMAR.rule(
     "task",
-    rf"{_TASK_OPENING}(?:{actions_regex('collect')}|pick up) {_ALL}",
-    rf"{_TASK_OPENING}tidy(?: up)?{_PLACE}",
+    rf"{_TASK_OPENING}(?:{actions_regex('collect')}|pick up) {_ALL}{_PLACE}"
+    rf"(?: and (?:(?:bring|take|put) (?:home|back|away) (?:it|them)|(?:bring|take|put) (?:it|them) "
+    rf"(?:home|back|away)))?{_TASK_END}",
+    rf"{_TASK_OPENING}tidy(?: up)?{_PLACE}{_TASK_END}",
 )
 def collect_all(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Collect all the blocks", "Collect everything", "Put everything away", "Tidy up"."""
     return (RunTask("collectAll"),)
 
 
-@GRAMMAR.rule("request", r"(?:(?:could|would|will) you |go |go and |now )?<ACT> <OBJ>(?: now| for me)?")
+@GRAMMAR.rule("request", r"(?:(?:could|would|will|can) you (?:please )?|go |go and |now |time to |"
+                         r"i want you to |i need you to |you should |let us )?<ACT> <OBJ>"
+                         r"(?: now| for me| right now)?")
 def request(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Throw this away", "Pick that up", "Could you collect the wallet?"."""
     return (Request(r.action(m["act"]), r.obj(m["obj"])),)

@@ -3,7 +3,8 @@
 A rule's pattern is a template over the normalised utterance with named fragments in angle
 brackets (``<FORBID><ACT> <OBJ>``), expanded to a regular expression and compiled once. A rule
 applies when its pattern matches the *whole* utterance and its builder returns instructions; a
-builder returns None to decline (the words fit the pattern but not the meaning, e.g. "it is red"
+builder returns None (or raises :class:`~ownctl.language.resolve.Decline`) to decline (the words
+fit the pattern but not the meaning, e.g. "it is red"
 is no introduction of someone called "red"), and the next rule is tried. Builders raise
 :class:`~ownctl.errors.OwnctlError` for a recognised form with a bad name ("that's Bob's" with no
 agent bob), so the user learns what was wrong rather than that nothing matched.
@@ -17,26 +18,31 @@ from dataclasses import dataclass
 
 from ownctl.language.instructions import Instruction
 from ownctl.language.lexicon import NOT_NOUNS, actions_regex, alternation
-from ownctl.language.resolve import Resolver
+from ownctl.language.resolve import Decline, Resolver
 
-_NOUN = rf"(?!{alternation(NOT_NOUNS)})[a-z][\w-]*(?: \d+)?"
-_DETERMINER = r"(?:this|that|the|my|your|our|his|her|their|[a-z][\w-]* 's)"
+_WORD = rf"(?!{alternation(NOT_NOUNS)})[a-z][\w-]*"
+_NOUN = rf"{_WORD}(?: \d+)?"
+_DETERMINER = r"(?:this|that|these|those|the|a|an|my|your|our|his|her|their|[a-z][\w-]* 's)"
 
 #: Named fragments usable in rule templates.
 FRAGMENTS: dict[str, str] = {
     # an action phrase ("throw away", "pick up", "collect")
     "ACT": rf"(?P<act>{actions_regex()})",
     # an object phrase: "that", "this one", "this wallet", "the wallet", "jake 's cup", "block 2"
-    "OBJ": rf"(?P<obj>(?:this|that|it)(?: one)?|(?:{_DETERMINER} )?{_NOUN})",
+    # (adjectives are checked against the object: "the red mug")
+    "OBJ": rf"(?P<obj>(?:this|that|it)(?: one)?|these|those|(?:{_DETERMINER} )?(?:{_WORD} ){{0,2}}{_NOUN})",
     # "do that": the action the robot is doing now
     "DO": r"do (?:that|this|it|so)",
     # a prohibition ("don't", "never", "you may not", ...) followed by a space
     "FORBID": r"(?:do not|never|you (?:can|could|may|must|should|shall) not|you (?:must|should) never|"
+              r"i would (?:rather|prefer(?: it if)?) you did not|i would prefer you not to|"
+              r"you had better not|you better not|please do not|i do not want you ever to|you are never to|"
               r"you are not (?:allowed|permitted|supposed) to|you are forbidden to|i do not want you to|"
               r"i forbid you to|do not you dare) ",
     # a permission ("you can", "it's ok to", "feel free to", ...) followed by a space
     "ALLOW": r"(?:you (?:can|may|are allowed to|are permitted to|are free to|have permission to)"
-             r"(?: always)?|feel free to|go ahead and|it is (?:ok|fine|allowed) (?:for you )?to|"
+             r"(?: always| go ahead and)?|feel free to|go ahead and|"
+             r"it is (?:ok|fine|allowed) (?:for you )?to|"
              r"i allow you to|i permit you to|you have my permission to) ",
     # the opening of a reprimand ("no", "hey", "stop", "don't", ...), each word followed by a space
     "REPRIMAND": r"(?:(?:no|nope|hey|stop|wait|whoa|oi|careful|do not|stop it|stop that|"
@@ -88,11 +94,15 @@ class Grammar:
 def first_match(
     rules: tuple[GrammarRule, ...], text: str, r: Resolver
 ) -> tuple[GrammarRule, tuple[Instruction, ...]] | None:
-    """The first rule whose pattern matches all of ``text`` and whose builder accepts it."""
+    """The first rule whose pattern matches all of ``text`` and whose builder accepts it (a
+    builder declines by returning None or raising :class:`Decline`)."""
     for rule in rules:
         m = rule.pattern.fullmatch(text)
         if m is not None:
-            built = rule.build(m, r)
+            try:
+                built = rule.build(m, r)
+            except Decline:
+                continue
             if built is not None:
                 return rule, built
     return None

@@ -18,7 +18,11 @@ from ownctl.logic.vocab import action as lookup_action
 TASKS = ("trashAll", "collectAll")
 
 #: How the robot speaks of its object actions in replies.
-VERBS = {"trash": "throw away", "pickUp": "pick up", "collect": "collect"}
+VERBS = {"trash": "throw away", "pickUp": "pick up", "putDown": "put down", "collect": "collect"}
+
+#: The actions a question about what may be done with an object checks ("what can't you do with
+#: the book?"): those people ask the robot for.
+OBJECT_ACTIONS = ("trash", "pickUp", "putDown", "collect")
 
 
 def verb(action: str) -> str:
@@ -151,6 +155,29 @@ class AskOwner:
 
 
 @dataclass(frozen=True)
+class AskOwned:
+    """"What do I own?": report the objects an agent probably owns."""
+
+    agent: str
+
+    def text(self) -> str:
+        """``owners --agent jake``."""
+        return f"owners --agent {self.agent}"
+
+
+@dataclass(frozen=True)
+class AskActions:
+    """"What are you not allowed to do with the book?": check each of :data:`OBJECT_ACTIONS` on
+    the object and report which are permitted and which forbidden."""
+
+    object: str
+
+    def text(self) -> str:
+        """``actions book`` (answered by one ``check`` per action)."""
+        return f"actions {self.object}"
+
+
+@dataclass(frozen=True)
 class AskPermitted:
     """"Can you throw this away?": check whether the action is permitted on the object."""
 
@@ -202,7 +229,8 @@ class RunTask:
 
 
 Instruction = (
-    Claim | Permission | NormInstruction | Introduce | Skip | AskOwner | AskPermitted | AskWhy | RunTask
+    Claim | Permission | NormInstruction | Introduce | Skip | AskOwner | AskOwned | AskActions | AskPermitted
+    | AskWhy | RunTask
 )
 
 

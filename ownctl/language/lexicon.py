@@ -25,15 +25,27 @@ ACTION_PHRASES: dict[str, str] = {
     "pick up": "pickUp", "lift": "pickUp", "grab": "pickUp", "take": "pickUp",
     "touch": "pickUp", "hold": "pickUp", "handle": "pickUp", "get": "pickUp",
     "collect": "collect", "bring home": "collect", "bring back": "collect", "bring": "collect",
-    "put away": "collect", "fetch": "collect", "gather": "collect",
+    "put away": "collect", "fetch": "collect", "gather": "collect", "gather up": "collect",
+    "take home": "collect", "bring me": "collect", "dump": "trash", "dump out": "trash",
+    "put down": "putDown", "set down": "putDown", "lay down": "putDown",
 }
 
+#: Irregular past participles of the verbs above ("thrown away", "picked up" is regular).
+PARTICIPLES = {"throw": "thrown", "take": "taken", "get": "gotten", "put": "put", "hold": "held",
+               "bring": "brought", "lay": "laid", "set": "set"}
+
 #: Verbs whose particle may follow the object ("throw it away"); normalisation joins them.
-PARTICLE_VERBS = ("throw", "toss", "chuck", "pick", "put", "bring", "clean", "tidy")
-PARTICLES = ("away", "out", "up", "home", "back")
+PARTICLE_VERBS = ("throw", "toss", "chuck", "pick", "put", "bring", "clean", "tidy", "gather", "take",
+                  "set", "lay", "dump")
+PARTICLES = ("away", "out", "up", "home", "back", "down")
+
+#: Places that mean the bin: "chuck it in the bin" is "throw it away".
+BIN_WORDS = ("bin", "trash", "trash can", "garbage", "rubbish", "wastebasket", "dustbin", "waste bin")
+#: Verbs that, with "in the bin", mean throwing away.
+BIN_VERBS = ("put", "throw", "chuck", "toss", "dump", "drop", "stick", "place")
 
 #: Deictic phrases: the object the conversation is about (``Context.about``).
-DEICTIC = ("this", "that", "it", "this one", "that one")
+DEICTIC = ("this", "that", "it", "this one", "that one", "these", "those", "they", "them")
 #: Nouns that describe rather than name an object: "this thing", "that block".
 GENERIC_NOUNS = frozenset({"one", "thing", "object", "item", "block", "cube", "stuff"})
 #: Heads of a class of objects in a norm: "red things", "anything of Jake's".
@@ -69,8 +81,30 @@ COLORS = frozenset({
 HEDGES: dict[str, float] = {
     "probably": 0.8, "likely": 0.8, "i think": 0.8, "i believe": 0.8, "i guess": 0.6,
     "maybe": 0.6, "perhaps": 0.6, "definitely": 1.0, "certainly": 1.0, "really": 1.0,
-    "actually": 1.0, "surely": 1.0, "i am sure": 1.0, "i am pretty sure": 0.9,
+    "actually": 1.0, "surely": 1.0, "i am sure": 1.0, "i am pretty sure": 0.8, "pretty sure": 0.8,
+    "i reckon": 0.8, "i suppose": 0.6, "for sure": 1.0, "i am certain": 1.0, "i bet": 0.8,
+    "as far as i know": 0.8, "if i am not mistaken": 0.8, "if i remember correctly": 0.8,
 }
+
+#: Discourse markers that may open a sentence without changing what it says ("So, whose is it?").
+DISCOURSE = frozenset({
+    "so", "and", "but", "ok", "well", "yes", "yeah", "yep", "sure", "right", "also", "then",
+    "anyway", "oh", "ah", "alright", "actually", "listen", "look", "see", "just", "and also",
+})
+
+#: When something happened, said after a statement without changing what it stores ("I gave it to
+#: Jake yesterday"); "now" is not among them: "it's Jake's now" means Jake's alone.
+TIME_WORDS = frozenset({
+    "yesterday", "today", "earlier", "earlier today", "this morning", "last week", "last night",
+    "a while ago", "recently", "already", "just now", "the other day", "a minute ago", "before",
+})
+
+#: Adjectives that may describe an object without naming it ("the little mug").
+ADJECTIVES = frozenset({
+    "little", "small", "big", "large", "old", "new", "empty", "full", "dirty", "clean", "broken",
+    "tall", "short", "round", "square", "plastic", "metal", "wooden", "favourite",
+    "favorite", "same", "whole", "last", "first", "own",
+})
 
 #: Words meaning the speaker, any agent, or no agent, in owner positions.
 SPEAKER_WORDS = frozenset({"me", "mine", "my", "i", "myself"})
@@ -81,7 +115,8 @@ ANYONE_WORDS = frozenset({
 NOBODY_WORDS = frozenset({"nobody"})
 
 #: Words dropped wherever they occur.
-FILLERS = frozenset({"please", "pls", "kindly", "um", "uh", "erm", "hmm", "oh", "well"})
+FILLERS = frozenset({"please", "pls", "plz", "kindly", "um", "umm", "uh", "uhh", "erm", "er", "hmm",
+                     "oh", "well"})
 
 #: What the parser says it understands when it does not (NotUnderstood's message).
 EXAMPLES = (
@@ -98,14 +133,47 @@ def alternation(words: tuple[str, ...] | frozenset[str] | list[str]) -> str:
     return "(?:" + "|".join(re.escape(w) for w in ordered) + r")(?![\w-])"
 
 
-def actions_regex(action: str | None = None) -> str:
-    """Regex for the phrases of one action (or of every action)."""
-    return alternation([p for p, a in ACTION_PHRASES.items() if action is None or a == action])
+def inflect(verb: str, form: str) -> str:
+    """A verb's ``ing`` form or past participle (``en``): "throw" -> "throwing", "thrown"; "get"
+    -> "getting", "gotten"; "take" -> "taking", "taken"; "collect" -> "collecting", "collected"."""
+    if form == "en" and verb in PARTICIPLES:
+        return PARTICIPLES[verb]
+    tail = "ing" if form == "ing" else "ed"
+    if verb.endswith("e") and not verb.endswith("ee"):
+        return verb[:-1] + tail
+    vowels = "aeiou"
+    short = (len(verb) <= 4 and len(verb) >= 3 and verb[-1] not in vowels + "wxy"
+             and verb[-2] in vowels and verb[-3] not in vowels)
+    return verb + verb[-1] + tail if short else verb + tail
+
+
+def _inflected(form: str) -> dict[str, str]:
+    out: dict[str, str] = {}
+    for phrase, act in ACTION_PHRASES.items():
+        first, _, rest = phrase.partition(" ")
+        if form == "en" and rest == "me":
+            continue
+        out[" ".join(filter(None, (inflect(first, form), rest)))] = act
+    return out
+
+
+#: "throwing away" -> trash ("stop throwing away my things").
+GERUNDS: dict[str, str] = _inflected("ing")
+#: "thrown away" -> trash ("things owned by Casey should never be thrown away").
+PASSIVES: dict[str, str] = {**_inflected("en"), "got rid of": "trash"}
+_FORMS = {**ACTION_PHRASES, **GERUNDS, **PASSIVES}
+
+
+def actions_regex(action: str | None = None, forms: dict[str, str] | None = None) -> str:
+    """Regex for the phrases of one action (or of every action), as said or in ``forms``."""
+    table = ACTION_PHRASES if forms is None else forms
+    return alternation([p for p, a in table.items() if action is None or a == action])
 
 
 def action_of(phrase: str) -> str:
-    """The action an action phrase names (``"throw away"`` -> ``trash``)."""
-    return ACTION_PHRASES[" ".join(phrase.split())]
+    """The action an action phrase names (``"throw away"``, ``"throwing away"``, ``"thrown
+    away"`` -> ``trash``)."""
+    return _FORMS[" ".join(phrase.split())]
 
 
 def hedge_of(phrase: str | None) -> float:

@@ -12,14 +12,28 @@ contractions, vocatives ("No Baxter, ...") or "please". Steps, in order:
    as its own word ("casey's" -> "casey 's");
 5. fillers ("please", "um", "just") go;
 6. a phrasal verb's particle is moved before its object ("throw this wallet away" -> "throw away
-   this wallet"), so each action phrase is one contiguous string.
+   this wallet"), so each action phrase is one contiguous string, and putting something in the bin
+   is throwing it away ("chuck it in the bin" -> "throw away it").
+
+Spaces are collapsed before the rewrites, so punctuation inside a phrase ("never, ever") does not
+break it.
 """
 
 from __future__ import annotations
 
 import re
+from functools import lru_cache
 
-from ownctl.language.lexicon import FILLERS, PARTICLE_VERBS, PARTICLES, ROBOT_NAMES, alternation
+from ownctl.language.lexicon import (
+    BIN_VERBS,
+    BIN_WORDS,
+    FILLERS,
+    PARTICLE_VERBS,
+    PARTICLES,
+    ROBOT_NAMES,
+    alternation,
+    inflect,
+)
 
 _QUOTES = str.maketrans({"\u2019": "'", "\u2018": "'", "`": "'", "\u00b4": "'", "\u02bc": "'"})
 _VOC = alternation(ROBOT_NAMES)
@@ -29,7 +43,7 @@ _LEAD_VOC = re.compile(rf"^[\s\W]*(?:{_INTERJECTIONS}{_PUNCT}+)?{_VOC}(?={_PUNCT
 _MID_VOC = re.compile(rf"[,\u2013\u2014-]\s*{_VOC}\s*[,\u2013\u2014-]")
 _TAIL_VOC = re.compile(rf"[,.!?;:\u2013\u2014-]\s*{_VOC}{_PUNCT}*$")
 
-_REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
+REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
     (re.compile(p), r)
     for p, r in (
         (r"\bno[ -]?one\b|\bnobody\b", "nobody"),
@@ -40,6 +54,9 @@ _REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
         (r"\b(do|does|did|is|are|was|were|should|must|could|would|have|has)n'?t\b", r"\1 not"),
         (r"(\w)n't\b", r"\1 not"),
         (r"\bi'm\b|\bim\b", "i am"),
+        (r"\bwhos\b(?= (?:is|the|that|this|it|going|owning|speaking)\b)", "who is"),
+        (r"\bwhos\b", "whose"),
+        (r"\b(?:nah|naw|nope)\b", "no"),
         (r"\byou're\b|\byoure\b", "you are"),
         (r"\blet's\b", "let us"),
         (r"\b(that|this|it|what|who|where|there|here|he|she|one)'s\b", r"\1 is"),
@@ -57,13 +74,15 @@ _REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
         (r"\bcolour\b", "color"),
         (r"\bgonna\b", "going to"),
         (r"\bwanna\b", "want to"),
-        (r"\bnever ever\b|\bdo not ever\b|\bdo not you ever\b", "never"),
+        (r"\bnever ever\b|\bdo not ever\b|\bdo not you ever\b|\bnever ever ever\b", "never"),
+        (r"\bhow come\b", "why"),
     )
 )
 
 _STOP = alternation((*PARTICLES, "and", "if", "then", "when", "because"))
+_PARTICLE_FORMS = sorted({f for v in PARTICLE_VERBS for f in (v, inflect(v, "ing"), inflect(v, "en"))})
 _PARTICLE = re.compile(
-    rf"\b({'|'.join(PARTICLE_VERBS)}) ((?:(?!{_STOP})[\w'-]+ ){{1,5}}?)({'|'.join(PARTICLES)})\b"
+    rf"\b({'|'.join(_PARTICLE_FORMS)}) ((?:(?!{_STOP})[\w'-]+ ){{1,5}}?)({'|'.join(PARTICLES)})\b"
 )
 
 
@@ -81,16 +100,25 @@ def _strip_punctuation(text: str) -> str:
     return re.sub(r"(?<![\w])(?:-+|'(?!s\b))|['-]+(?![\w])", " ", text)
 
 
+_BIN = re.compile(
+    rf"\b(?:{'|'.join(BIN_VERBS)}) ((?:(?!{_STOP})[\w'-]+ ){{1,6}}?)(?:in|into|in to) (?:the |a |your )?"
+    rf"{alternation(BIN_WORDS)}(?! area| zone)"
+)
+
+
 def _move_particles(text: str) -> str:
-    """``throw this away`` -> ``throw away this``: the particle joins its verb."""
+    """``throw this away`` -> ``throw away this``: the particle joins its verb; ``put this in the
+    bin`` -> ``throw away this``."""
+    text = _BIN.sub(lambda m: f"throw away {m.group(1).strip()}", text)
     return _PARTICLE.sub(lambda m: f"{m.group(1)} {m.group(3)} {m.group(2)}", text)
 
 
+@lru_cache(maxsize=4096)
 def normalize(utterance: str) -> str:
     """The canonical word string of an utterance (lower case, single spaces, no punctuation)."""
     text = _drop_vocatives(utterance.translate(_QUOTES).lower())
-    text = _strip_punctuation(text)
-    for pattern, repl in _REWRITES:
+    text = " ".join(_strip_punctuation(text).split())
+    for pattern, repl in REWRITES:
         text = pattern.sub(repl, text)
     text = " ".join(w for w in text.split() if w not in FILLERS)
     return " ".join(_move_particles(text).split())

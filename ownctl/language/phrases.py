@@ -10,7 +10,13 @@
 "things", "stuff", "anything", and postmodifiers relative clauses or prepositional phrases
 ("that belong to Xuan", "of Jake's", "nobody owns", "in the home area", "if it is red"),
 joined by an optional "and". Each modifier is one (pattern, builder) pair; a builder returning
-None declines (e.g. a word that is not a colour), and the next modifier is tried.
+None declines (e.g. a word that is not a colour), and the next modifier is tried. A head may also
+be a known category, singular or plural ("cups", "any book").
+
+:func:`class_alternatives` adds the connectives: "or" between two owners or colours gives two
+alternatives ("things of Jake's or Xuan's": two rules), and "unless ..." adds the negation of its
+condition ("Casey's stuff unless it's green": ``ownedBy casey and not isColored green``; an
+exception that is itself a conjunction gives one alternative per negated literal).
 """
 
 from __future__ import annotations
@@ -18,6 +24,7 @@ from __future__ import annotations
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
+from itertools import product
 
 from ownctl.language.lexicon import CLASS_HEADS, HEDGES, alternation, hedge_of
 from ownctl.language.resolve import NOBODY, Resolver
@@ -34,6 +41,7 @@ _TAIL = re.compile(
     rf"(?: and (?P<also>{_OWNER}))?"
     r"(?: too| as well| also)?"
     rf"(?: (?:and |but )?not (?P<other>{_OWNER})(?: anymore| any more)?)?"
+    r"(?: either| anymore| any more| now| then)?"
 )
 
 
@@ -192,13 +200,67 @@ def class_literals(phrase: str, r: Resolver) -> tuple[Literal, ...] | None:
     ("anything") gives no literals: the norm then applies to every object. "it"/"them" heads need a
     condition ("it if it is red").
     """
-    pos = m.end() if (m := _DETERMINER.match(phrase)) else 0
-    pos, pre = _modifiers(phrase, pos, PREMODIFIERS, r, joiner=False)
-    head = _HEAD.match(phrase, pos)
-    if head is None:
+    det = m.group() if (m := _DETERMINER.match(phrase)) else ""
+    pos, pre = _modifiers(phrase, len(det), PREMODIFIERS, r, joiner=False)
+    kind: list[Literal] = []
+    word = phrase[pos:].split(" ", 1)[0]
+    category = r.category_noun(word) if r.ctx.categories else None
+    if category is not None and word == category and det == "the " and r.is_object(word):
+        category = None  # "the cup" is one object; "cups", "any cup", "the kitchenware" are a class
+    if category is not None:
+        kind, end, head_word = [Literal("inCategory", category)], pos + len(word), word
+    elif (head := _HEAD.match(phrase, pos)) is not None:
+        end, head_word = head.end(), head.group()
+    else:
         return None
-    pos = head.end() + 1
+    pos = end + 1
     pos, post = _modifiers(phrase, pos, POSTMODIFIERS, r, joiner=True)
-    if pos < len(phrase) or (head.group() in ("it", "them") and not (pre or post)):
+    if pos < len(phrase) or (head_word in ("it", "them") and not (pre or post)):
         return None
-    return (*pre, *post)
+    return tuple(dict.fromkeys((*pre, *kind, *post)))
+
+
+# -- connectives: "or" and "unless" ----------------------------------------------------------------
+
+_OR = re.compile(r"(?:(?<= )|^)(?P<a>[a-z][\w-]*(?: 's)?) (?:or|nor) (?P<b>[a-z][\w-]*(?: 's)?)(?= |$)")
+_SUBJECT = re.compile(r"(?:it|they|something|anything|an object|a thing|the object|the thing|that|"
+                      r"this|these|those|things|stuff|an item|the item) ")
+_OBJECT_TAIL = re.compile(r" (?:it|them)$")
+
+
+def condition_phrase(clause: str) -> str:
+    """A clause about "it" as a class phrase: "it is red" -> "anything that is red", "something
+    belongs to someone" -> "anything that belongs to someone", "nobody owns it" -> "anything that
+    nobody owns"."""
+    clause = _OBJECT_TAIL.sub("", clause)
+    m = _SUBJECT.match(clause)
+    return "anything that " + (clause[m.end():] if m else clause)
+
+
+def _or_alternatives(phrase: str, r: Resolver) -> list[tuple[Literal, ...]] | None:
+    """The alternatives of a class phrase with "A or B" between two words of one kind."""
+    m = _OR.search(phrase)
+    if m is None:
+        lits = class_literals(phrase, r)
+        return None if lits is None else [lits]
+    out: list[tuple[Literal, ...]] = []
+    for word in (m["a"], m["b"]):
+        alt = _or_alternatives(phrase[:m.start()] + word + phrase[m.end():], r)
+        if alt is None:
+            return None
+        out += alt
+    return list(dict.fromkeys(out))
+
+
+def class_alternatives(phrase: str, r: Resolver) -> list[tuple[Literal, ...]] | None:
+    """The class phrase as alternatives (a disjunction of literal conjunctions), with "or" and
+    "unless"; None if it is not a class phrase."""
+    main, sep, exception = phrase.partition(" unless ")
+    alts = _or_alternatives(main, r)
+    if alts is None or not sep:
+        return alts
+    excepted = _or_alternatives(condition_phrase(exception), r)
+    if not excepted or any(not conj for conj in excepted):
+        return None
+    negations = [tuple(pick) for pick in product(*[[lit.negate() for lit in conj] for conj in excepted])]
+    return list(dict.fromkeys(tuple(dict.fromkeys(a + n)) for a in alts for n in negations))

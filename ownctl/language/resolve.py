@@ -7,11 +7,12 @@ an agent name, :data:`ANY` ("someone", "other people") or :data:`NOBODY` ("nobod
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from functools import lru_cache
 
-from ownctl.errors import UnknownName
+from ownctl.errors import OwnctlError, UnknownName
 from ownctl.language.context import Context, MissingContext
 from ownctl.language.lexicon import (
+    ADJECTIVES,
     ANYONE_WORDS,
     DEICTIC,
     GENERIC_NOUNS,
@@ -20,15 +21,38 @@ from ownctl.language.lexicon import (
     action_of,
 )
 from ownctl.logic.names import check_name, is_name
-from ownctl.logic.rules import ANY
+from ownctl.logic.rules import ANY, Literal
 from ownctl.logic.vocab import ACTIONS
 
 NOBODY = "\0nobody"
 
+#: Determiners of an object phrase ("the", "this", "my", "Jake's" is handled apart).
+DETERMINERS = frozenset({"this", "that", "the", "these", "those", "a", "an", "my", "your", "our",
+                         "his", "her", "their", "its"})
+#: Possessive determiners that refer to the last agent named ("Jake gave me his pen").
+PRONOUNS = frozenset({"his", "her", "their", "he", "she", "they", "him", "them"})
 
-def _index(names: Iterable[str]) -> dict[str, str]:
-    """Lower-case name -> stored spelling."""
+
+class Decline(Exception):
+    """Raised by a builder's helper when the words are not of its form after all (e.g. "cups" is
+    a class of objects, not an object): the grammar tries the next rule."""
+
+
+class NotAnObject(OwnctlError):
+    """An object phrase whose description does not fit the object it names ("the blue mug" when
+    the mug is red)."""
+
+
+@lru_cache(maxsize=64)
+def _index(names: frozenset[str]) -> dict[str, str]:
+    """Lower-case name -> stored spelling (cached: a context's names are parsed against many times)."""
     return {n.lower(): n for n in names}
+
+
+@lru_cache(maxsize=64)
+def _colour_index(colors: frozenset[str]) -> dict[str, str]:
+    """Lower-case colour -> stored spelling; "none" is a colour value, never a colour word."""
+    return {c.lower(): c for c in colors if c.lower() != "none"}
 
 
 class Resolver:
@@ -36,9 +60,10 @@ class Resolver:
 
     def __init__(self, ctx: Context) -> None:
         self.ctx = ctx
+        self.topic: str | None = None  # an object named alone ("The scarf?"), for the next sentence
         self._agents = _index(ctx.agents)
         self._objects = _index(ctx.objects)
-        self._colors = _index(c for c in ctx.colors if c.lower() != "none")
+        self._colors = _colour_index(ctx.colors)
         self._areas = _index(ctx.areas)
         self._categories = _index(ctx.categories)
 
@@ -62,6 +87,12 @@ class Resolver:
         """True if ``word`` names a known agent."""
         return word.lower() in self._agents
 
+    def pronoun(self, word: str) -> str:
+        """The agent "he"/"she"/"his" refers to: the last agent named; an error if none was."""
+        if self.ctx.mentioned is None:
+            raise MissingContext(f"who is {word!r}? name the person instead")
+        return self.ctx.mentioned
+
     def owner(self, phrase: str) -> str:
         """``mine``/``me`` -> speaker, ``jake 's``/``jake`` -> jake, ``someone`` -> ANY, ``nobody``."""
         words = phrase.removesuffix(" 's").strip()
@@ -71,6 +102,8 @@ class Resolver:
             return ANY
         if words in NOBODY_WORDS:
             return NOBODY
+        if words in PRONOUNS:
+            return self.pronoun(words)
         return self.agent(words)
 
     def new_agent(self, word: str) -> str:
@@ -91,21 +124,98 @@ class Resolver:
         return word.lower() in self._objects
 
     def obj(self, phrase: str) -> str:
-        """An object phrase: "that", "this wallet", "my cup", "the wallet", "wallet", "block 2"."""
+        """An object phrase: "that", "this wallet", "my cup", "the red mug", "wallet", "block 2".
+
+        Adjectives before the name must fit it: a colour that the object is known not to have, or
+        a word that is neither a colour nor a describing adjective, is an error (the phrase then
+        names some other thing). A plural that names a class of objects ("cups", "the blocks")
+        declines (:class:`Decline`), so a norm's rule can read it.
+        """
         if phrase in DEICTIC:
             return self.about(phrase)
-        words = phrase.split()
-        det = ""
-        if len(words) > 1 and words[1] == "'s":
-            det, words = " ".join(words[:2]), words[2:]
-        elif len(words) > 1 and not words[-1].isdigit() or len(words) > 2:
-            det, words = words[0], words[1:]
-        noun = "".join(words)
+        det, words = split_determiner(phrase)
+        if not words:
+            raise Decline(phrase)
+        number = words[-1] if len(words) > 1 and words[-1].isdigit() else ""
+        if number:
+            words = [*words[:-2], words[-2] + number]
+        noun, adjectives = words[-1], words[:-1]
         if noun.lower() in self._objects:
-            return self._objects[noun.lower()]
-        if det in ("this", "that") or (words[0] in GENERIC_NOUNS and self.ctx.about is not None):
+            name = self._objects[noun.lower()]
+            self._check_adjectives(name, adjectives)
+            return name
+        if (noun in GENERIC_NOUNS or self.is_class_noun(noun)) and adjectives and det not in ("this", "that"):
+            return self._described(noun, adjectives, phrase)  # "the yellow block", "the red one"
+        if noun in GENERIC_NOUNS and (det in ("this", "that") or self.ctx.about is not None):
+            if det not in ("this", "that", "") and not adjectives:
+                raise Decline(phrase)  # "the stuff", "my things": a class
+            name = self.about(phrase)
+            self._check_adjectives(name, adjectives)
+            return name
+        if det in ("this", "that") and not adjectives:
             return self.about(phrase)
+        if self.is_class_noun(noun):
+            raise Decline(phrase)
         raise UnknownName("object", noun, self.ctx.objects)
+
+    def possessor(self, phrase: str) -> str | None:
+        """The owner an object phrase names ("my cup" -> the speaker, "Jake's mug" -> jake)."""
+        det, _ = split_determiner(phrase)
+        if det == "my":
+            return self.speaker()
+        if det.endswith(" 's"):
+            who = self.owner(det)
+            return who if who not in (ANY, NOBODY) else None
+        if det in PRONOUNS:
+            return self.pronoun(det)
+        return None
+
+    def _described(self, noun: str, adjectives: list[str], phrase: str) -> str:
+        """The one object a description picks out by its percepts ("the yellow block": the only
+        yellow object in category block, or the only yellow one if "block" is no category)."""
+        colours = [c for w in adjectives if (c := self.colour(w)) is not None]
+        if len(colours) != len(adjectives) or len(set(colours)) != 1:
+            raise Decline(phrase)
+        category = self.category_noun(noun)
+        lits = [Literal("isColored", colours[0]), *([Literal("inCategory", category)] if category else [])]
+        found = self.select(tuple(lits), phrase)
+        if len(found) != 1:
+            raise MissingContext(f"which one is {phrase!r}? it could be {', '.join(found)}")
+        return found[0]
+
+    def _check_adjectives(self, name: str, adjectives: list[str]) -> None:
+        facts = self.ctx.facts.get(name)
+        for word in adjectives:
+            colour = self.colour(word)
+            if colour is not None:
+                if facts is not None and facts.color is not None and facts.color != colour:
+                    raise NotAnObject(f"{name} is {facts.color}, not {colour}: which object is "
+                                      f"'{word} {name}'?")
+            elif word not in ADJECTIVES:
+                raise Decline(word)
+
+    def is_class_noun(self, word: str) -> bool:
+        """True if ``word`` is a category or the plural of one ("cups")."""
+        return self.category_noun(word) is not None
+
+    def category_noun(self, word: str) -> str | None:
+        """The known category a noun names, in the singular or plural ("cups" -> cup)."""
+        for form in plural_stems(word):
+            if form in self._categories:
+                return self._categories[form]
+        return None
+
+    def select(self, literals: tuple[Literal, ...], said: str) -> list[str]:
+        """The objects a class phrase picks out by their percepts (in name order); an error if
+        the phrase depends on ownership, or no object is known to fit it."""
+        if any(lit.pred == "ownedBy" for lit in literals):
+            raise MissingContext(f"I cannot tell which objects {said!r} are from what I see: name them")
+        found = [name for name in sorted(self.ctx.objects)
+                 if (facts := self.ctx.facts.get(name)) is not None
+                 and all(holds(lit, facts.color, facts.areas, facts.categories) for lit in literals)]
+        if not found:
+            raise MissingContext(f"I know of no objects that are {said!r}")
+        return found
 
     def current_action(self, said: str = "that") -> str:
         """The action the robot is doing on the current object; an error if there is none."""
@@ -138,3 +248,36 @@ class Resolver:
         if word.lower() in self._categories:
             return self._categories[word.lower()]
         return word if not self._categories and is_name(word) else None
+
+
+def split_determiner(phrase: str) -> tuple[str, list[str]]:
+    """An object phrase's determiner ("the", "my", "jake 's", or "") and the words after it."""
+    words = phrase.split()
+    if len(words) > 1 and words[1] == "'s":
+        return " ".join(words[:2]), words[2:]
+    if words and words[0] in DETERMINERS:
+        return words[0], words[1:]
+    return "", words
+
+
+def plural_stems(word: str) -> list[str]:
+    """The word and its possible singulars ("cups" -> cups, cup; "boxes" -> box)."""
+    forms = [word]
+    if word.endswith("ies"):
+        forms.append(word[:-3] + "y")
+    if word.endswith("es"):
+        forms.append(word[:-2])
+    if word.endswith("s"):
+        forms.append(word[:-1])
+    return forms
+
+
+def holds(lit: Literal, color: str | None, areas: frozenset[str], categories: frozenset[str]) -> bool:
+    """The truth of a crisp literal for an object with these percepts."""
+    if lit.pred == "isColored":
+        value = color is not None if lit.arg == ANY else color == lit.arg
+    elif lit.pred == "inArea":
+        value = bool(areas) if lit.arg == ANY else lit.arg in areas
+    else:
+        value = bool(categories) if lit.arg == ANY else lit.arg in categories
+    return value != lit.negated

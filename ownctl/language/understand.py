@@ -4,22 +4,47 @@ Rule order: statements (reprimands, claims, permissions, norms) before dialogue 
 introductions, tasks, requests, small talk). The forms hardly overlap because every pattern must
 match the whole utterance; where they could, the order above decides, deterministically.
 
-An utterance no rule matches as a whole is split at punctuation (. ! ? ; ,) into the fewest pieces
-that each parse: "Hi, I'm Jake. Can you throw this away?" is an introduction then a question,
-and the question is understood with Jake as the speaker. The combined intent is that of the first
-piece that is not a greeting, thanks or introduction.
+A sentence may open with a discourse marker ("so", "okay", "but") and carry a hedge at either end
+("..., I think", "pretty sure ..."): the marker is dropped and the hedge lowers the confidence of
+the claims the sentence makes.
+
+An utterance no rule matches as a whole is split at punctuation (. ! ? ; , and dashes) into the
+fewest pieces that each parse: "Hi, I'm Jake. Can you throw this away?" is an introduction then a
+question, and the question is understood with Jake as the speaker; a later piece's "it" is the
+object an earlier one named, and its "he" the agent. A piece that does not parse is skipped only if
+it holds no word that could carry meaning (an action, a name, an owner, a negation: "Go on",
+"Whoa, whoa", "Just so you know") and the rest parses; the reply then says what was ignored. Two
+splits that parse equally well but store different things are refused, with both readings shown.
+Then, if nothing parses, misspelt words are corrected (:mod:`ownctl.language.spelling`) and the
+utterance is tried once more; the reply says how each was read.
+
+Time is linear in the length: a piece spans at most :data:`MAX_PIECE_CHUNKS` punctuation-delimited
+chunks and :data:`MAX_PIECE_CHARS` characters, and an utterance longer than :data:`MAX_CHARS`
+characters is refused at once. A piece holds one sentence unless it is short or a reprimand.
 """
 
 from __future__ import annotations
 
 import re
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 from ownctl.errors import OwnctlError
-from ownctl.language import dialogue, statements
-from ownctl.language.context import Context, NotUnderstood, Understanding
+from ownctl.language import dialogue, spelling, statements
+from ownctl.language.context import Context, MissingContext, NotUnderstood, Understanding
 from ownctl.language.grammar import GrammarRule, first_match
-from ownctl.language.instructions import Introduce
+from ownctl.language.instructions import Claim, Instruction, Introduce, NormInstruction, Permission, Skip
+from ownctl.language.lexicon import (
+    ACTION_PHRASES,
+    ANYONE_WORDS,
+    CLASS_HEADS,
+    DISCOURSE,
+    HEDGES,
+    NOBODY_WORDS,
+    SPEAKER_WORDS,
+    TIME_WORDS,
+    alternation,
+    hedge_of,
+)
 from ownctl.language.normalize import normalize
 from ownctl.language.reply import reply
 from ownctl.language.resolve import Resolver
@@ -27,72 +52,262 @@ from ownctl.language.resolve import Resolver
 #: Every grammar rule, in the order they are tried.
 RULES: tuple[GrammarRule, ...] = (*statements.GRAMMAR.rules, *dialogue.GRAMMAR.rules)
 
-_CHUNK_END = re.compile(r"[.!?;,]+")
+#: The longest utterance understood (characters); longer ones are refused at once.
+MAX_CHARS = 4000
+#: A piece (one sentence, as parsed) spans at most this many chunks and characters.
+MAX_PIECE_CHUNKS = 12
+MAX_PIECE_CHARS = 200
+#: A piece longer than this holds one sentence, unless it is a reprimand ("That's mine. Don't throw
+#: it away!") of at most twice this length; a shorter one may hold stray punctuation ("can you
+#: throw! this away?").
+SHORT_PIECE_CHARS = 40
+
+_CHUNK_END = re.compile(r"[.!?;,:]+|\s[-\u2013\u2014]+\s|[\u2013\u2014]")
+_SENTENCE_END = re.compile(r"[.!?;]")
 _SOCIAL = ("greeting", "thanks", "introduction")
+_DISCOURSE = re.compile(rf"^(?:{alternation(DISCOURSE)} )+")
+_HEDGE = alternation(tuple(HEDGES))
+_LEAD_HEDGE = re.compile(rf"^(?P<h>{_HEDGE}) ")
+_TAIL_HEDGE = re.compile(rf" (?P<h>{_HEDGE})(?: so)?$")
+_TIME_TAIL = re.compile(rf" {alternation(TIME_WORDS)}$")
+#: Words that carry meaning: a piece holding one is never skipped.
+_CONTENT = frozenset(
+    {w for phrase in ACTION_PHRASES for w in phrase.split() if w not in ("me", "up", "out", "down")}
+    | SPEAKER_WORDS | NOBODY_WORDS | {w for p in ANYONE_WORDS for w in p.split() if w != "people"}
+    | set(CLASS_HEADS) - {"it", "them", "one", "ones"}
+    | {"not", "never", "only", "unless", "except", "own", "owns", "owned", "owner", "belong", "belongs",
+       "allowed", "forbidden", "permitted", "mine", "yours", "whose", "who", "why", "what", "can", "may",
+       "must", "should", "do", "does", "did", "if", "clear", "clean", "tidy", "empty", "give", "gave"}
+)
+
+
+class TooLong(OwnctlError):
+    """An utterance longer than :data:`MAX_CHARS` characters."""
+
+
+@dataclass(frozen=True)
+class _Piece:
+    """One understood piece: its understanding and the notes its reply carries."""
+
+    understood: Understanding
+    ignored: str | None = None  # the text skipped instead of understood
+
+
+def _intent(rule: GrammarRule, instructions: tuple[Instruction, ...]) -> str:
+    """The intent of a statement follows what it stores ("No, that's mine!" said while the robot
+    does nothing is a claim); other rules keep their own."""
+    if rule.intent not in ("reprimand", "claim", "permission", "norm"):
+        return rule.intent
+    kinds = {type(i) for i in instructions}
+    for kind, intent in ((Skip, "reprimand"), (NormInstruction, "norm"), (Permission, "permission"),
+                         (Claim, "claim")):
+        if kind in kinds:
+            return intent
+    return rule.intent
+
+
+def _variants(text: str) -> list[tuple[str, float | None, str]]:
+    """The text, then without an opening discourse marker, then without a hedge at either end:
+    (text, confidence cap or None, what was dropped)."""
+    out = [(text, None, "")]
+    bare = text
+    if (m := _DISCOURSE.match(text)) and m.end() < len(text):
+        bare = text[m.end():]
+        out.append((bare, None, m.group().strip()))
+    if (t := _TIME_TAIL.search(bare)) and t.start() > 0:
+        bare = bare[:t.start()]
+        out.append((bare, None, t.group().strip()))
+    for pattern in (_LEAD_HEDGE, _TAIL_HEDGE):
+        if (h := pattern.search(bare)) and len(h.group()) < len(bare):
+            rest = (bare[:h.start()] + " " + bare[h.end():]).strip()
+            out.append((rest, hedge_of(h["h"]), h["h"]))
+            if rest.startswith("that "):  # "pretty sure that the pen is Jake's"
+                out.append((rest[5:], hedge_of(h["h"]), h["h"]))
+    return out
+
+
+def _hedged(instructions: tuple[Instruction, ...], cap: float) -> tuple[Instruction, ...]:
+    """The claims with their confidence capped by a hedge."""
+    return tuple(replace(i, p=min(i.p, cap)) if isinstance(i, Claim) else i for i in instructions)
+
+
+def _parse_one(utterance: str, ctx: Context) -> Understanding | None:
+    """One sentence as a whole, or None if no rule matches it (a rule that knows why it cannot
+    help raises NotUnderstood with its reason)."""
+    text = normalize(utterance)
+    if not text:
+        raise NotUnderstood(utterance, "there is nothing to understand")
+    first: OwnctlError | None = None  # a variant's error is reported only if no variant parses
+    for variant, cap, _ in _variants(text):
+        resolver = Resolver(ctx)
+        try:
+            found = first_match(RULES, variant, resolver)
+        except NotUnderstood as err:
+            first = first or NotUnderstood(utterance, err.detail)
+            continue
+        except OwnctlError as err:
+            first = first or err
+            continue
+        if found is None:
+            continue
+        rule, instructions = found
+        if cap is not None:
+            instructions = _hedged(instructions, cap)
+        intent = _intent(rule, instructions)
+        return Understanding(intent, instructions, reply(intent, instructions), rule.name, resolver.topic)
+    if first is not None:
+        raise first
+    return None
 
 
 def understand_one(utterance: str, ctx: Context) -> Understanding:
     """Understand one sentence as a whole (no splitting); NotUnderstood if no rule matches it."""
-    text = normalize(utterance)
-    if not text:
-        raise NotUnderstood(utterance, "there is nothing to understand")
-    try:
-        found = first_match(RULES, text, Resolver(ctx))
-    except NotUnderstood as err:  # a rule that knows why it cannot help
-        raise NotUnderstood(utterance, err.detail) from None
+    found = _parse_one(utterance, ctx)
     if found is None:
         raise NotUnderstood(utterance)
-    rule, instructions = found
-    return Understanding(rule.intent, instructions, reply(rule.intent, instructions), rule.name)
+    return found
+
+
+def _objects_named(understood: Understanding) -> list[str]:
+    return [o for i in understood.instructions if (o := getattr(i, "object", None))]
 
 
 def _after(ctx: Context, understood: Understanding) -> Context:
-    """The context for the next sentence: an introduction makes its agent the speaker."""
+    """The context for the next piece: an introduction makes its agent the speaker; "it" is the
+    last object named, "he"/"she" the last agent named other than the speaker."""
     for i in understood.instructions:
         if isinstance(i, Introduce):
             ctx = replace(ctx, speaker=i.agent, agents=ctx.agents | {i.agent})
+    objects = _objects_named(understood) or ([understood.topic] if understood.topic else [])
+    if objects:
+        ctx = replace(ctx, about=objects[-1])
+    agents = [i.agent for i in understood.instructions if isinstance(i, Claim) and i.agent != ctx.speaker]
+    if agents:
+        ctx = replace(ctx, mentioned=agents[-1])
     return ctx
 
 
-def _pieces(utterance: str, ctx: Context) -> list[Understanding]:
-    """Split at punctuation into the fewest pieces that each parse (ties: longer first piece).
+def _has_content(text: str, ctx: Context) -> bool:
+    """True if a piece holds a word that could carry meaning, so it must not be skipped: a word
+    that names an action, an owner, a negation or a thing, or one the parser does not know (it may
+    be a name: "that's Bob's")."""
+    known = spelling.vocabulary()
+    names = {n.lower() for n in (*ctx.agents, *ctx.objects, *ctx.colors, *ctx.areas, *ctx.categories)}
+    return any(w in _CONTENT or w in names or w.removesuffix("s") in names or w not in known
+               for w in normalize(text).split())
 
-    Dynamic programming over the punctuation-delimited chunks, so punctuation inside a sentence
-    ("throw this! away") does not matter. Chunks holding only a vocative or punctuation are dropped.
-    """
+
+def _chunks(utterance: str) -> list[tuple[int, int]]:
+    """The punctuation-delimited chunks (start, end) of an utterance."""
     cuts = sorted({0, *(m.end() for m in _CHUNK_END.finditer(utterance)), len(utterance)})
-    memo: dict[tuple[int, Context], list[Understanding] | None] = {}
+    return list(zip(cuts, cuts[1:], strict=False))
+
+
+_Cost = tuple[int, int, int]  # (pieces skipped, pieces, sentence ends inside pieces)
+
+
+@dataclass
+class _Path:
+    """The best way found to understand the chunks before one boundary: its last piece and the
+    path before it (a chain, so extending a path costs nothing), the context it leaves, a
+    fingerprint of what it stores in order (equal fingerprints store the same), and another way as
+    good that would store something else."""
+
+    cost: _Cost
+    ctx: Context
+    prev: _Path | None = None
+    piece: _Piece | None = None
+    stored: int = 0
+    other: _Path | None = None
+
+    def then(self, piece: _Piece, skipped: bool, ctx: Context, crosses: bool = False) -> _Path:
+        """This path followed by ``piece`` (which may hold a sentence end: "That's mine. Don't!")."""
+        skip, count, crossed = self.cost
+        cost = (skip + skipped, count + (not skipped), crossed + crosses)
+        stored = self.stored
+        for text in piece.understood.texts():
+            stored = hash((stored, text))
+        other = None if self.other is None else self.other.then(piece, skipped, ctx, crosses)
+        return _Path(cost, ctx, self, piece, stored, other)
+
+    def pieces(self) -> list[_Piece]:
+        """The pieces of the path, in order."""
+        out: list[_Piece] = []
+        path: _Path | None = self
+        while path is not None and path.piece is not None:
+            out.append(path.piece)
+            path = path.prev
+        return out[::-1]
+
+
+def _offer(paths: list[_Path | None], j: int, path: _Path) -> None:
+    """Keep the better of two ways to reach boundary ``j``; remember a tie that stores otherwise."""
+    old = paths[j]
+    if old is None or path.cost < old.cost:
+        paths[j] = path
+    elif (path.cost == old.cost and old.other is None and path.stored != old.stored
+          and set(_stored(path.pieces())) != set(_stored(old.pieces()))):
+        old.other = path  # the same things in another order is no second reading
+
+
+def _pieces(utterance: str, ctx: Context) -> list[_Piece]:
+    """Split at punctuation into the fewest pieces that each parse, skipping only pieces that say
+    nothing, and of those splits the one whose pieces hold fewest sentence ends (dynamic
+    programming from left to right: each boundary keeps its best way there, and a piece spans a
+    bounded number of characters, so the time is linear). Raises NotUnderstood naming the first
+    piece that does not parse, or showing two readings when two best splits would store different
+    things."""
+    spans = _chunks(utterance)
+    n = len(spans)
     errors: list[OwnctlError] = []  # from pieces that matched a form but named something wrong
+    paths: list[_Path | None] = [_Path((0, 0, 0), ctx), *([None] * n)]
+    for i in range(n):
+        here = paths[i]
+        if here is None:
+            continue
+        start, named_wrong = spans[i][0], False
+        for j in range(i + 1, min(n, i + MAX_PIECE_CHUNKS) + 1):
+            text = utterance[start:spans[j - 1][1]]
+            if len(text) > MAX_PIECE_CHARS:
+                break
+            crosses = bool(_SENTENCE_END.search(utterance, start, spans[j - 2][1])) if j > i + 1 else False
+            if crosses and len(text) > 2 * SHORT_PIECE_CHARS:
+                break
+            if not normalize(text):
+                _offer(paths, j, here)
+                continue
+            try:
+                head = _parse_one(text, here.ctx)
+            except NotUnderstood:
+                continue
+            except OwnctlError as err:
+                errors.append(err)
+                named_wrong = named_wrong or (j == i + 1 and not isinstance(err, MissingContext))
+                continue
+            if head is None or (crosses and len(text) > SHORT_PIECE_CHARS and head.intent != "reprimand"):
+                continue
+            _offer(paths, j, here.then(_Piece(head), False, _after(here.ctx, head), crosses))
+        text = utterance[start:spans[i][1]]
+        if normalize(text) and not named_wrong and not _has_content(text, here.ctx):  # says nothing
+            skipped = _Piece(Understanding("greeting", (), ""), text.strip(" .!?;,:-\u2013\u2014"))
+            _offer(paths, i + 1, here.then(skipped, True, here.ctx))
+    result = paths[n]
+    if result is None:
+        if errors:
+            raise errors[0]
+        bad = next((utterance[a:b] for a, b in spans if normalize(utterance[a:b])
+                    and _has_content(utterance[a:b], ctx) and not _parses(utterance[a:b], ctx)), "")
+        raise NotUnderstood(utterance, f"in particular {bad.strip(' .!?;,:-')!r}" if bad else "")
+    if result.other is not None:
+        readings = " or ".join(f"[{'; '.join(_stored(p.pieces())) or 'nothing'}]"
+                               for p in (result, result.other))
+        raise NotUnderstood(utterance, f"it has two readings: {readings}; say it in one sentence")
+    return result.pieces()
 
-    def best(i: int, ctx: Context) -> list[Understanding] | None:
-        if i == len(cuts) - 1:
-            return []
-        if (i, ctx) not in memo:
-            found: list[Understanding] | None = None
-            if not normalize(utterance[cuts[i]:cuts[i + 1]]):
-                found = best(i + 1, ctx)
-            for j in range(len(cuts) - 1, i, -1):
-                try:
-                    head = understand_one(utterance[cuts[i]:cuts[j]], ctx)
-                except NotUnderstood:
-                    continue
-                except OwnctlError as err:
-                    errors.append(err)
-                    continue
-                rest = best(j, _after(ctx, head))
-                if rest is not None and (found is None or len(rest) + 1 < len(found)):
-                    found = [head, *rest]
-            memo[i, ctx] = found
-        return memo[i, ctx]
 
-    pieces = best(0, ctx)
-    if pieces is not None:
-        return pieces
-    if errors:
-        raise errors[0]
-    bad = next((utterance[a:b] for a, b in zip(cuts, cuts[1:], strict=False)
-                if normalize(utterance[a:b]) and not _parses(utterance[a:b], ctx)), "")
-    raise NotUnderstood(utterance, f"in particular {bad.strip(' .!?;,')!r}" if bad else "")
+def _stored(pieces: list[_Piece]) -> tuple[str, ...]:
+    """What a reading stores or asks, in order (duplicates once)."""
+    return tuple(dict.fromkeys(t for p in pieces for t in p.understood.texts()))
 
 
 def _parses(text: str, ctx: Context) -> bool:
@@ -106,29 +321,69 @@ def _parses(text: str, ctx: Context) -> bool:
     return True
 
 
-def _combine(parts: list[Understanding]) -> Understanding:
-    """One understanding for several sentences, instructions in order."""
-    if len(parts) == 1:
+def _combine(pieces: list[_Piece]) -> Understanding:
+    """One understanding for several pieces, instructions in order (an exact repeat once)."""
+    parts = [p.understood for p in pieces if p.ignored is None]
+    ignored = [p.ignored for p in pieces if p.ignored]
+    note = " ".join(f"(ignored {text!r})" for text in ignored)
+    if len(parts) == 1 and not ignored:
         return parts[0]
     main = next((u for u in parts if u.intent not in _SOCIAL), parts[0])
     return Understanding(
         main.intent,
-        tuple(i for u in parts for i in u.instructions),
-        " ".join(u.reply for u in parts if u.reply),
+        tuple(dict.fromkeys(i for u in parts for i in u.instructions)),
+        " ".join(filter(None, (*(u.reply for u in parts), note))),
         "+".join(u.form for u in parts),
     )
+
+
+def _understand(utterance: str, ctx: Context) -> Understanding:
+    """Understand as a whole, else split into pieces (if the pieces do not parse either, an error
+    the whole raised that names a bad value is the one reported)."""
+    whole: OwnctlError = NotUnderstood(utterance)
+    if len(utterance) <= MAX_PIECE_CHARS:
+        try:
+            return understand_one(utterance, ctx)
+        except OwnctlError as err:
+            whole = err
+            if not _CHUNK_END.search(utterance.strip(" .!?;,:")) or "nothing to understand" in err.message:
+                raise
+    try:
+        return _combine(_pieces(utterance, ctx))
+    except NotUnderstood:
+        if isinstance(whole, NotUnderstood) and not whole.detail:
+            raise
+        raise whole from None
 
 
 def understand(utterance: str, ctx: Context) -> Understanding:
     """What ``utterance``, said in ``ctx``, means: intent, instructions in order, and the reply.
 
-    Raises NotUnderstood (an OwnctlError listing examples) if it cannot be parsed, MissingContext
-    if it refers to a speaker, object or action the context does not give, and UnknownName or
-    BadName for a name that is not known (an agent in a claim) or not valid (an introduced name).
+    Raises NotUnderstood (an OwnctlError listing examples) if it cannot be parsed, TooLong if it
+    is longer than MAX_CHARS characters, MissingContext if it refers to a speaker, object or action
+    the context does not give, and UnknownName or BadName for a name that is not known (an agent in
+    a claim) or not valid (an introduced name).
     """
+    if len(utterance) > MAX_CHARS:
+        raise TooLong(f"the utterance is {len(utterance)} characters long; I understand at most "
+                      f"{MAX_CHARS} at once: say it in shorter parts")
     try:
-        return understand_one(utterance, ctx)
-    except NotUnderstood as err:
-        if not _CHUNK_END.search(utterance.strip(" .!?;,")) or "nothing to understand" in err.message:
-            raise
-    return _combine(_pieces(utterance, ctx))
+        return _understand(utterance, ctx)
+    except OwnctlError as err:
+        first = err
+    readings, unclear = spelling.corrections(normalize(utterance).split(), ctx)
+    if readings:
+        try:
+            got = _understand(spelling.apply(utterance, readings), ctx)
+        except OwnctlError:
+            pass
+        else:
+            notes = " ".join(r.note() for r in readings)
+            return replace(got, reply=f"{got.reply} {notes}".strip())
+    if unclear and isinstance(first, NotUnderstood):
+        maybe = "; ".join(f"{w!r} could be {' or '.join(repr(c) for c in cs)}" for w, cs in unclear.items())
+        raise NotUnderstood(utterance, "; ".join(filter(None, (first.detail, maybe)))) from None
+    raise first
+
+
+__all__ = ["MAX_CHARS", "RULES", "TooLong", "understand", "understand_one"]

@@ -166,3 +166,44 @@ def test_a_task_runs_after_the_utterance_is_stored(table_world: Ownctl) -> None:
     assert positions["wallet"] == [0.1, 0.1, 0.0]
     assert -0.3 <= positions["mug"][0] <= 0.2 and 0.6 <= positions["mug"][1] <= 1.1
 
+
+
+def test_what_may_you_do_with_it_checks_each_object_action(table_world: Ownctl) -> None:
+    table_world("forbid", "pickUp", "if", "isColored", "red")
+    out = table_world.json("say", "What are you not allowed to do with the mug?", "--as", "xuan")
+    assert out["instructions"] == ["actions mug"]
+    assert out["forbidden"] is False  # a list of answers, not a refusal
+    checks = {c["action"]: c["decision"] for c in out["results"][0]["data"]["checks"]}
+    assert checks == {"trash": "forbidden", "pickUp": "forbidden", "putDown": "permitted",
+                      "collect": "forbidden"}
+    assert out["reply"].startswith("With mug, I may: put down. I may not: throw away (")
+    after = table_world.json("say", "What can you do with the wallet?", "--as", "xuan")
+    assert after["reply"] == "With wallet, I may: throw away, pick up, put down, collect."
+
+
+def test_what_does_someone_own_lists_their_likely_things(table_world: Ownctl) -> None:
+    out = table_world.json("say", "What does Alexis own?", "--as", "xuan")
+    assert out["instructions"] == ["owners --agent alexis"]
+    assert out["reply"].startswith("alexis probably owns wallet (p=1)")
+    assert "nothing xuan owns" in table_world.json("say", "What's mine?", "--as", "xuan")["reply"]
+
+
+def test_objects_are_picked_by_their_percepts(table_world: Ownctl) -> None:
+    out = table_world.json("say", "Everything on the desk is mine.", "--as", "xuan")
+    assert out["instructions"] == ["claim wallet xuan"]  # the only object inside the desk's box
+    red = table_world.json("say", "The red mug's mine.", "--as", "xuan")
+    assert red["instructions"] == ["claim mug xuan"]
+    wrong = table_world("say", "The blue mug is mine.", "--as", "xuan", code=1)
+    assert "mug is red, not blue" in wrong.stderr
+
+
+def test_a_typo_is_read_and_said(table_world: Ownctl) -> None:
+    out = table_world.json("say", "The wallett is Alexis's.", "--as", "xuan")
+    assert out["instructions"] == ["claim wallet alexis"]
+    assert "(read 'wallett' as 'wallet')" in out["reply"]
+
+
+def test_an_overlong_utterance_is_refused_at_once(table_world: Ownctl) -> None:
+    refused = table_world("say", "The mug is mine. " * 300, "--as", "xuan", code=1)
+    assert "characters long; I understand at most 4000" in refused.stderr
+    assert "Traceback" not in refused.stderr

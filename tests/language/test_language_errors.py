@@ -51,8 +51,8 @@ def test_mine_without_a_speaker(utterance: str) -> None:
         understand(utterance, replace(CTX, speaker=None))
 
 
-@pytest.mark.parametrize("utterance", ["No, that's mine!", "Don't do that", "Stop", "Go ahead",
-                                       "Don't do that if it's red"])
+@pytest.mark.parametrize("utterance", ["Don't do that", "Stop", "Go ahead", "Don't do that if it's red",
+                                       "No, not the cup!"])
 def test_a_reprimand_needs_an_action(utterance: str) -> None:
     with pytest.raises(MissingContext, match="which action"):
         understand(utterance, replace(CTX, action=None))
