@@ -76,7 +76,7 @@ class Ownctl:
         the store, as the command line does)."""
         ctx = self._context()
         ctx.command = command
-        return ctx.retrying(lambda: use_case(ctx))
+        return use_case(ctx)  # app use cases retry by themselves while another writer holds the store
 
     def close(self) -> None:
         """Close the store."""

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from ownctl.app.context import AppContext, Done
+from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import changing
 from ownctl.app.settings import FLAGS, check_key, effective, parse_value
 from ownctl.errors import OwnctlError
@@ -77,6 +77,7 @@ def config_get(ctx: AppContext, key: str | None = None) -> dict[str, Any]:
     return {key: values.get(key)}
 
 
+@use_case
 def config_set(ctx: AppContext, key: str, text: str) -> Done:
     """Set ``key`` to the value in ``text`` ("default" removes an override)."""
     value = parse_value(key, text)
@@ -88,6 +89,7 @@ def config_set(ctx: AppContext, key: str, text: str) -> Done:
     return Done(f"{key} set to {shown}", {"key": key, "value": value})
 
 
+@use_case
 def set_flag(ctx: AppContext, key: str, on: bool) -> Done:
     """freeze/unfreeze perms|rules, disable/enable inference|prediction."""
     if key not in FLAGS:
@@ -99,6 +101,7 @@ def set_flag(ctx: AppContext, key: str, on: bool) -> Done:
     return Done(f"{what} {word}", {"key": key, "value": on})
 
 
+@use_case
 def reset(ctx: AppContext, what: str, yes: bool) -> Done:
     """Forget permissions, rules, claims or all of them (see the module docstring); needs ``yes``."""
     if what not in RESETS:

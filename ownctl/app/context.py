@@ -12,12 +12,13 @@ explicitly: nothing here reads the environment or the clock.
 
 from __future__ import annotations
 
+import functools
 import random
 import time
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any, TypeVar
+from typing import TYPE_CHECKING, Any, Concatenate, ParamSpec, TypeVar
 
 from ownctl.errors import StoreBusy
 from ownctl.logic.names import check_name
@@ -27,6 +28,7 @@ if TYPE_CHECKING:
     from ownctl.store.repo import Tx
 
 T = TypeVar("T")
+P = ParamSpec("P")
 
 #: A use case that failed because another writer held the store is tried again this many times,
 #: waiting about 0.05 s, 0.1 s, 0.2 s, ... (with jitter, at most MAX_WAIT each) before giving up.
@@ -127,3 +129,14 @@ class AppContext:
         if self._store is not None:
             self._store.close()
             self._store = None
+
+
+def use_case(fn: Callable[Concatenate[AppContext, P], T]) -> Callable[Concatenate[AppContext, P], T]:
+    """Mark a use case: called outside any transaction, it is tried again while another writer holds
+    the store (:meth:`AppContext.retrying`); inside one (a use case made of others), it runs once."""
+
+    @functools.wraps(fn)
+    def wrapper(ctx: AppContext, /, *args: P.args, **kwargs: P.kwargs) -> T:
+        return ctx.retrying(lambda: fn(ctx, *args, **kwargs))
+
+    return wrapper

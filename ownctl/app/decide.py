@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ownctl.app.beliefs import belief_sources
-from ownctl.app.context import AppContext
+from ownctl.app.context import AppContext, use_case
 from ownctl.app.mindstore import load
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.vocab import ACTIONS
@@ -95,6 +95,7 @@ def remember(ctx: AppContext, report: CheckReport) -> None:
         tx.meta.converse(**turn)
 
 
+@use_case
 def check(ctx: AppContext, action: str, obj: str, record: bool = True) -> CheckReport:
     """Decide ``action`` on ``obj``; see the module docstring (``record``: remember it as a turn)."""
     act = check_action(action)

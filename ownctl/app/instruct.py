@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from typing import TYPE_CHECKING
 
-from ownctl.app.context import AppContext, Done
+from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import changing
 from ownctl.app.settings import probability
 from ownctl.errors import BadValue, OwnctlError
@@ -27,6 +27,7 @@ if TYPE_CHECKING:
     from ownctl.store.repo import Tx
 
 
+@use_case
 def add_claim(
     ctx: AppContext,
     obj: str,
@@ -61,6 +62,7 @@ def add_claim(
     )
 
 
+@use_case
 def add_permission(ctx: AppContext, action: str, obj: str, value: float, speaker: str | None = None) -> Done:
     """``forbid|allow ACTION on OBJ``: store (overwrite) the permission; value 1.0 forbids, 0.0 allows.
 
@@ -100,6 +102,7 @@ def check_references(tx: Tx, rule: Rule) -> None:
             tx.world.area(lit.arg)
 
 
+@use_case
 def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
     """``forbid|allow ACTION [if LITERALS]``: a given norm, by cover rule (forbid) or uncover rule
     (allow; the allow norm is kept as a rule of origin allow and subtracted after re-induction)."""

@@ -9,7 +9,7 @@ from collections import Counter
 from typing import TYPE_CHECKING, Any
 
 from ownctl.app.beliefs import decision_belief
-from ownctl.app.context import AppContext, Done
+from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import changing, load, rule_of
 from ownctl.app.settings import probability
 from ownctl.errors import OwnctlError
@@ -88,6 +88,7 @@ def list_permissions(ctx: AppContext) -> list[dict[str, Any]]:
         return [_permission_dict(p, objects) for p in tx.knowledge.permissions()]
 
 
+@use_case
 def remove_permission(ctx: AppContext, permission_id: int) -> Done:
     """Forget one permission."""
     with ctx.read() as tx:
@@ -124,6 +125,7 @@ def list_rules(ctx: AppContext) -> list[dict[str, Any]]:
     return out
 
 
+@use_case
 def remove_rule(ctx: AppContext, rule_id: int) -> Done:
     """Forget one rule or allow norm; refused while rules are frozen."""
     with ctx.read() as tx:

@@ -18,6 +18,8 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 from ownctl.app.context import AppContext
 from ownctl.errors import OwnctlError
 from ownctl.humanize import plural
@@ -90,7 +92,7 @@ def language_context(ctx: AppContext, speaker: str | None, about: str | None) ->
         categories = tx.things.categories()
         boxes = [Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.world.areas()]
         facts = {o.name: Facts(o.color, frozenset(b.name for b in boxes if o.x is not None and o.y is not None
-                                                  and bool(b.contains([[o.x, o.y]])[0])),
+                                                  and bool(b.contains(np.array([[o.x, o.y]]))[0])),
                                frozenset(categories.get(o.id, ())))
                  for o in objects}
         return Context(

@@ -11,7 +11,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from ownctl.app.context import AppContext, Done
+from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import changing
 from ownctl.errors import BadValue
 from ownctl.humanize import iso
@@ -42,6 +42,7 @@ def finite(what: str, value: float) -> float:
 
 
 # -- agents -------------------------------------------------------------------------------------
+@use_case
 def add_agent(ctx: AppContext, name: str) -> Done:
     """Introduce an agent (a possible owner)."""
     check_name("agent", name)
@@ -71,6 +72,7 @@ def _remove_named(ctx: AppContext, kind: str, name: str) -> Done:
     return Done(f"removed {kind} {name}", {kind: name})
 
 
+@use_case
 def remove_agent(ctx: AppContext, name: str) -> Done:
     """Forget an agent and its beliefs; refused while a rule names it."""
     return _remove_named(ctx, "agent", name)
@@ -96,6 +98,7 @@ def _categories(categories: Sequence[str]) -> list[str]:
     return sorted({check_name("category", c) for c in categories})
 
 
+@use_case
 def add_object(
     ctx: AppContext,
     name: str,
@@ -113,6 +116,7 @@ def add_object(
     return Done(f"added object {name}", {"object": name})
 
 
+@use_case
 def set_object(
     ctx: AppContext,
     name: str,
@@ -138,6 +142,7 @@ def set_object(
     return Done(f"updated object {name}", {"object": name, "changed": sorted(set(changed))})
 
 
+@use_case
 def remove_object(ctx: AppContext, name: str) -> Done:
     """Forget an object with its beliefs and permissions."""
     return _remove_named(ctx, "object", name)
@@ -177,6 +182,7 @@ def show_object(ctx: AppContext, name: str) -> dict[str, Any]:
     return out
 
 
+@use_case
 def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Done:
     """Record that ``agent`` interacted with ``obj`` at absolute store time ``at`` (default now)."""
     time = ctx.now if at is None else finite("--at", at)
@@ -189,6 +195,7 @@ def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Don
 
 
 # -- areas --------------------------------------------------------------------------------------
+@use_case
 def add_area(ctx: AppContext, name: str, box: str) -> Done:
     """Add a box area ``"x0,y0,x1,y1"`` on the table plane."""
     check_name("area", name)
@@ -206,6 +213,7 @@ def list_areas(ctx: AppContext) -> list[dict[str, Any]]:
         return [{"name": a.name, "box": [a.x0, a.y0, a.x1, a.y1]} for a in tx.world.areas()]
 
 
+@use_case
 def remove_area(ctx: AppContext, name: str) -> Done:
     """Forget an area; refused while a rule names it."""
     return _remove_named(ctx, "area", name)

@@ -13,7 +13,7 @@ from dataclasses import replace
 from pathlib import Path
 from typing import Any
 
-from ownctl.app.context import AppContext, Done
+from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import load as load_mind
 from ownctl.app.mindstore import spec_of
 from ownctl.errors import BadValue, OwnctlError
@@ -62,6 +62,7 @@ def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = F
     tx.knowledge.set_truth(truth, world.norms)
 
 
+@use_case
 def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
     """Add the world in ``path`` to the store, in one transaction."""
     world = read_world(path, seed)
