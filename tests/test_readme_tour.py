@@ -47,11 +47,12 @@ def test_every_tour_line_runs_as_written(tmp_path: Path) -> None:
     for folder in (work, home, bin_dir):
         folder.mkdir()
     shutil.copytree(ROOT / "scenarios", work / "scenarios")
-    shim = bin_dir / "ownctl"  # this interpreter's ownctl, whichever environment runs the tests
+    shim = bin_dir / "ownctl"  # this checkout's ownctl on this interpreter, in or out of a venv
     shim.write_text(f'#!/bin/sh\nexec "{sys.executable}" -c "from ownctl.cli.main import run; run()" "$@"\n')
     shim.chmod(0o755)
     env = {k: v for k, v in os.environ.items() if not k.startswith(("OWNCTL_", "XDG_"))}
-    env.update(HOME=str(home), PATH=f"{bin_dir}{os.pathsep}{env.get('PATH', '/usr/bin:/bin')}")
+    env.update(HOME=str(home), PATH=f"{bin_dir}{os.pathsep}{env.get('PATH', '/usr/bin:/bin')}",
+               PYTHONPATH=os.pathsep.join(filter(None, [str(ROOT), env.get("PYTHONPATH")])))  # this checkout
     for line in tour_lines((ROOT / "README.md").read_text(encoding="utf-8")):
         done = subprocess.run(["bash", "-c", line], cwd=work, env=env, capture_output=True, text=True)
         assert done.returncode in allowed_codes(line), (line, done.returncode, done.stdout, done.stderr)

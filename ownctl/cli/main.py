@@ -91,7 +91,8 @@ app.add_typer(experiment_app, name="experiment")
 
 @lru_cache(maxsize=1)
 def command() -> Any:
-    """The click command behind ``app`` (built once; ``batch`` runs every line through it)."""
+    """The click command behind ``app``, built once for in-process callers (batch lines and
+    scenario steps run on the root command of their own context instead)."""
     return typer.main.get_command(app)
 
 
