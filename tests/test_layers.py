@@ -32,7 +32,7 @@ def test_only_declared_dependencies_are_imported_for_the_cli() -> None:
 
 #: the packages whose modules must not import each other in a cycle; widen to ("ownctl",) once the
 #: whole package is free of cycles
-CYCLE_FREE_PACKAGES: tuple[str, ...] = ("ownctl.cli",)
+CYCLE_FREE_PACKAGES: tuple[str, ...] = ("ownctl",)
 
 
 def import_cycles(package: str, within: tuple[str, ...]) -> list[list[str]]:

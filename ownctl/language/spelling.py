@@ -50,14 +50,24 @@ def words_of(patterns: Iterable[str]) -> set[str]:
     return out
 
 
+#: The grammar's patterns, told by the grammar when it is defined (:func:`know_patterns`), so that
+#: this module need not import the parser that imports it.
+_GRAMMAR: list[str] = []
+
+
+def know_patterns(patterns: Iterable[str]) -> None:
+    """Add the grammar's regular expressions to the vocabulary typos are corrected towards."""
+    _GRAMMAR.extend(patterns)
+    vocabulary.cache_clear()
+
+
 @cache
 def vocabulary() -> frozenset[str]:
     """Every word the parser knows (grammar patterns, phrase modifiers, normalisation, lexicon)."""
     from ownctl.language import phrases
     from ownctl.language.normalize import REWRITES
-    from ownctl.language.understand import RULES
 
-    patterns = [rule.pattern.pattern for rule in RULES]
+    patterns = list(_GRAMMAR)
     patterns += [mod.pattern.pattern for mod in (*phrases.PREMODIFIERS, *phrases.POSTMODIFIERS)]
     patterns += [p.pattern for p, _ in REWRITES] + [r for _, r in REWRITES]
     tables: list[Iterable[str]] = [

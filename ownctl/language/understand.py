@@ -51,6 +51,7 @@ from ownctl.language.resolve import Resolver
 
 #: Every grammar rule, in the order they are tried.
 RULES: tuple[GrammarRule, ...] = (*statements.GRAMMAR.rules, *dialogue.GRAMMAR.rules)
+spelling.know_patterns(rule.pattern.pattern for rule in RULES)
 
 #: The longest utterance understood (characters); longer ones are refused at once.
 MAX_CHARS = 4000
