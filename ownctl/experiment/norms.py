@@ -5,6 +5,10 @@ agent's label is 0.6 if it owns the object else 0.4, plus uniform noise of +-0.2
 for a fraction of the objects, for every action with a true norm, one object at a time. Inference
 and prediction are off, as in the paper. The learned rules are scored against the true norms on all
 objects with their true ownership.
+
+On a norm family (:class:`ownctl.world.families.NormFamily`) the same protocol gives permissions
+for, and scores, every action the family names, including those with no norm (where every
+permission allows).
 """
 
 from __future__ import annotations
@@ -20,6 +24,7 @@ from ownctl.experiment.mind import Mind, Switches
 from ownctl.experiment.result import TrialResult
 from ownctl.experiment.truth import true_rules
 from ownctl.logic.prob import p_forbidden
+from ownctl.world.families import NormFamily
 from ownctl.world.model import World, make_frame
 
 WorldFactory = Callable[[np.random.Generator], World]
@@ -59,6 +64,8 @@ def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
     world = make_world(rng)
     truth = world.true_ownership()
     rules = true_rules(world)
+    if isinstance(make_world, NormFamily):  # its actions without a norm are given permissions too
+        rules = {a: rules.get(a, ()) for a in make_world.actions}
     true_frame = make_frame(world.objects, world.areas, world.agents, truth)
     settings = Settings(learn=LearnConfig(learner=learner))
     mind = Mind(world.agents, list(world.objects), world.areas, settings,
