@@ -21,20 +21,26 @@ Everything is deterministic: canonical literal order, stable sorts, ordered exam
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ownctl.config import LearnConfig
+from ownctl.learn import exact
 from ownctl.learn.algebra import merge_rule, rule_diff, specialising
 from ownctl.learn.evidence import Evidence, Vocabulary
+from ownctl.learn.model import Model, model_for
 from ownctl.learn.search import rule_search, sizes
 from ownctl.logic.rules import ANY, Norm, Rule
 
 LABEL_NOISE = 0.003  # the instructor is almost always right about permissions
 LITERAL_PENALTY = 0.7  # nats per literal in the "ours" score
 RULE_PENALTY = 1.5  # nats per rule: a new rule must explain more than one uncertain example
+MAX_RULES = 5  # ours: rules re-induction may add to the given ones
+TRACES = 4096  # ours: re-induction traces kept for certification (a memo: results never depend on it)
+_traces: OrderedDict[tuple, exact.Choice] = OrderedDict()
 
 
 @dataclass(frozen=True)
@@ -58,11 +64,14 @@ class Inducer:
 
     def __init__(self, action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig) -> None:
         self.action, self.ev, self.cfg = action, ev, cfg
-        # agents the examples' worlds leave out (no ownership among the examples, or beyond the
-        # enumeration limit) cannot be told apart there, so rules do not name them
-        self.atoms = [a for a in vocab.atoms()
-                      if a.pred != "ownedBy" or a.arg == ANY or a.arg in ev.worlds.atoms]
         self.ours = cfg.learner == "ours"
+        # agents the examples' worlds leave out (no ownership among the examples, or beyond the
+        # enumeration limit) cannot be told apart there: the paper's search does not name them;
+        # ours searches the whole vocabulary (such literals cover nothing, or what their rule
+        # covers, and are never chosen), so its hypothesis space does not depend on the examples
+        self.atoms = [a for a in vocab.atoms()
+                      if self.ours or a.pred != "ownedBy" or a.arg == ANY or a.arg in ev.worlds.atoms]
+        self.model: Model = model_for(vocab.atoms(), cfg.max_conditions)
 
     # -- helpers -------------------------------------------------------------------------------
     def _covers(self, rule: Rule) -> np.ndarray:
@@ -140,29 +149,40 @@ class Inducer:
         return current
 
     # -- re-induction (ours) ------------------------------------------------------------------
-    def reinduce(self, given: Sequence[Rule], allows: Sequence[Rule], max_rules: int = 4) -> list[Rule]:
+    def reinduce(self, given: Sequence[Rule], allows: Sequence[Rule], trace: exact.Choice | None = None
+                 ) -> list[Rule]:
         """Ours: the most probable rule set for all stored examples, kept around the given rules.
 
-        Greedy covering from the given rules: repeatedly add the rule (beam search from the empty
-        rule) that most lowers the penalised negative log-likelihood, then drop learned rules whose
-        removal does not cost more than their penalty, then subtract the allow norms. The result
-        depends only on the examples, not on the order they arrived in.
+        Greedy, with an exact search for each rule (:func:`ownctl.learn.exact.reinduce`), on the
+        examples in canonical order, then the allow norms are subtracted: the result depends only on
+        the set of examples, not on the order they arrived in. ``trace``: a certified trace of this
+        very computation (:func:`ownctl.learn.exact.certify_greedy`), used instead of searching again.
         """
-        current = list(given)
-        for _ in range(max_rules):
-            result = self._search(Rule(self.action), self._delta_add(current), -1e-9, (), current)
-            if not result.success:
-                break
-            merged = self._merge(current, result.rule)
-            current = [*(g for g in given if g not in merged), *merged]  # what was said stays
-        for r in [r for r in current if r not in given]:
-            rest = [x for x in current if x != r]
-            gain = float(nll(self.ev, self.ev.q(rest)) - nll(self.ev, self.ev.q(current)))
-            if gain <= LITERAL_PENALTY * len(r.literals) + RULE_PENALTY:
-                current = rest
+        if trace is None:
+            canon, _, _ = exact.canonical_order(self.ev)
+            trace = exact.reinduce(canon, self.action, given, self.atoms, self.model,
+                                   self.cfg.max_conditions, MAX_RULES)
+        current = list(trace.result)
         for allow in allows:
             current = subtract(current, allow, self._merge)
         return current
+
+    def traced(self, given: Sequence[Rule], new: int) -> exact.Choice:
+        """The re-induction trace for the stored examples: certified from the trace of the same
+        examples without example ``new`` when one is known and the certificate holds, else computed."""
+        canon, order, digests = exact.canonical_order(self.ev)
+        truncated = self.ev.worlds.atoms if len(self.ev.frame.agents) > exact.MAX_NAMED_AGENTS else None
+        key = (self.action, tuple(given), tuple(self.atoms), truncated, self.model, self.cfg.max_conditions,
+               MAX_RULES)
+        full = (key, tuple(digests))
+        rest = (key, tuple(d for k, d in enumerate(digests) if order[k] != new))
+        trace = exact.reinduce(canon, self.action, given, self.atoms, self.model, self.cfg.max_conditions,
+                               MAX_RULES, _traces.get(rest), order.index(new))
+        _traces[full] = trace
+        _traces.move_to_end(full)
+        while len(_traces) > TRACES:
+            _traces.popitem(last=False)
+        return trace
 
     # -- Algorithms 3 and 4 ------------------------------------------------------------------
     def cover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
@@ -215,35 +235,33 @@ def agreement(ev: Evidence, rules: Sequence[Rule], i: int) -> float:
     return float(ev.t[i] * q + (1.0 - ev.t[i]) * (1.0 - q))
 
 
-EXPLAINED = 0.5  # ours: a permission the rules agree with at least this likely is left to inference
-UNEXPLAINABLE = 0.01  # ours: a permission the rules agree with less likely than this is learned from
-
-
 def learn_permission(
     action: str, rules: Sequence[Rule], allows: Sequence[Rule], ev: Evidence, new: int,
     vocab: Vocabulary, cfg: LearnConfig, given: Sequence[Rule] = (),
 ) -> Outcome:
-    """The conflict gate, then induction: accommodate example ``new``, then every misclassified one.
+    """Induction after permission ``new`` was stored with the others in ``ev``.
 
-    While the rules agree with at least ``cfg.accuracy_gate`` of the stored permissions (soft
-    accuracy), nothing is learned: the permission is only stored and used for inference. The
-    ``ours`` learner refines the gate with the new permission's own agreement: a permission the rules
-    explain plausibly (by some likely ownership) is left to inference even when accuracy is low, and
-    one they cannot explain is learned from even when accuracy is high; it then re-induces the whole
-    rule set around the given norms (:meth:`Inducer.reinduce`).
+    ``paper``: the conflict gate, then cover/uncover example for ``new`` and then every misclassified
+    example, while the rules agree with less than ``cfg.accuracy_gate`` of the stored permissions
+    (soft accuracy); otherwise the permission is only stored and used for inference.
+
+    ``ours``: the most probable rule set for all stored permissions around the given rules
+    (:meth:`Inducer.reinduce`), after every permission; a permission the rules explain by a likely
+    ownership changes nothing (the stated model weighs it), and the result depends only on the set of
+    permissions, not on their order. Most permissions are settled by certifying the previous
+    re-induction (:func:`ownctl.learn.exact.certify_greedy`) instead of searching again. ``induced`` says
+    whether the rules changed.
     """
     accuracy = ev.soft_accuracy(rules)
-    ours = cfg.learner == "ours"
-    if ours:
-        agree = agreement(ev, rules, new)
-        induce = agree < UNEXPLAINABLE or (accuracy < cfg.accuracy_gate and agree < EXPLAINED)
-    else:
-        induce = accuracy < cfg.accuracy_gate
-    if not induce:
+    if cfg.learner == "ours":
+        if ev.n == 0:
+            return Outcome(tuple(rules), False, accuracy)
+        ind = Inducer(action, ev, vocab, cfg)
+        learned = tuple(ind.reinduce(given, allows, ind.traced(given, new)))
+        return Outcome(learned, learned != tuple(rules), accuracy)
+    if accuracy >= cfg.accuracy_gate:
         return Outcome(tuple(rules), False, accuracy)
     ind = Inducer(action, ev, vocab, cfg)
-    if ours:
-        return Outcome(tuple(ind.reinduce(given, allows)), True, accuracy)
     current = list(rules)
     for j in [new, *(j for j in range(ev.n) if j != new)]:
         q = float(ev.q(current)[j])

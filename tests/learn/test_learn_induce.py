@@ -249,11 +249,17 @@ def test_ours_learns_from_a_permission_no_ownership_can_explain_even_when_accura
     assert ours.induced and rules[0] in ours.rules and ev.soft_accuracy(list(ours.rules)) == 1.0
 
 
-def test_ours_treats_evidence_against_a_zero_prior_as_unexplainable() -> None:
-    ev, vocab = evidence(GATE_OWN, GATE_COLOURS, GATE_VALUES)
+def test_ours_learns_from_evidence_against_a_zero_prior_when_a_rule_explains_it() -> None:
+    colours = [*GATE_COLOURS[:-1], "white"]  # the forbidden unowned object is the only white one
+    ev, vocab = evidence(GATE_OWN, colours, GATE_VALUES)
     rules = (parse_rule("forbid trash if ownedBy any"),)
     out = learn_permission("trash", rules, (), ev, ev.n - 1, vocab, LearnConfig(learner="ours"), rules)
-    assert out.induced
+    assert out.induced and texts(out.rules) == ["forbid trash if isColored white",
+                                                "forbid trash if ownedBy any"]
+    # with a blue one instead, two allowed unowned blue objects look the same: nothing explains it
+    ev, vocab = evidence(GATE_OWN, GATE_COLOURS, GATE_VALUES)
+    out = learn_permission("trash", rules, (), ev, ev.n - 1, vocab, LearnConfig(learner="ours"), rules)
+    assert not out.induced and out.rules == rules
 
 
 # -- cover / uncover example ---------------------------------------------------------------------------------

@@ -1,0 +1,353 @@
+"""Exact search for the rule that most lowers the objective, and the re-induction built on it.
+
+:func:`best_rule` is branch and bound over the refinement lattice (every satisfiable conjunction
+without implied literals, up to ``max_length`` literals, each enumerated once in canonical atom
+order): a rule's refinements cover, in every ownership world, a subset of what it covers, so the
+objective of any refinement is bounded below by keeping the rule's covered forbid examples and
+dropping its covered allow examples; subtrees whose bound cannot beat the prune threshold are cut.
+A refinement that covers exactly what its parent covers is skipped (a shorter rule covers the same
+for less). Ties go to the canonically first rule (shorter first, then vocabulary order).
+
+:func:`reinduce` adds, greedily, the best rule while it lowers the objective, then drops rules that
+no longer pay for themselves, and records every decision with its margin (a :class:`Trace`), so that
+:func:`certify_greedy` can prove, for one more example, that re-running it would take the same decisions.
+Examples are put in a canonical order first (:func:`canonical_order`), so every floating-point sum,
+and so every decision, depends only on the set of examples, not on their arrival order.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ownctl.learn.evidence import MAX_NAMED_AGENTS, Evidence
+from ownctl.learn.model import Model, compatible, literal_list
+from ownctl.logic.rules import Literal, Rule
+
+__all__ = ["MAX_NAMED_AGENTS", "Best", "Trace", "best_rule", "canonical_order", "certify_greedy", "reinduce"]
+
+SLACK = 1e-9  # decisions closer than this to their threshold are never certified
+CAP = 3.0  # nats above the best (or above 0) within which subtrees are still explored, for margins
+
+
+@dataclass(frozen=True)
+class Best:
+    """The result of :func:`best_rule`: the best rule (None if no candidate beats ``accept``), its
+    score, a lower bound on every other candidate's score, and one on every candidate's score."""
+
+    rule: Rule | None
+    score: float
+    runner_up: float
+    lower: float
+    twins: tuple[Rule, ...] = ()  # the best rule plus one literal, covering exactly what it covers
+
+
+def example_digests(ev: Evidence) -> list[bytes]:
+    """Each example's identity for the learner: its value, ownership, colour, areas and categories,
+    as bytes (equal bytes, equal example)."""
+    f = ev.frame
+    areas = sorted(f.areas)
+    member = np.array([np.asarray(f.areas[a], dtype=bool) for a in areas]).reshape(len(areas), ev.n)
+    rows = np.concatenate([ev.t[:, None], np.asarray(f.own, dtype=np.float64), member.T.astype(float)],
+                          axis=1)
+    tail = [f"{f.colors[i]}|{','.join(sorted(f.categories[i]))}".encode() for i in range(ev.n)]
+    return [rows[i].tobytes() + tail[i] for i in range(ev.n)]
+
+
+def canonical_order(ev: Evidence) -> tuple[Evidence, list[int], list[bytes]]:
+    """The same examples sorted by digest (ties keep arrival order), the permutation, the digests."""
+    digests = example_digests(ev)
+    order = sorted(range(ev.n), key=lambda i: digests[i])
+    if order == list(range(ev.n)):
+        return ev, order, digests
+    return ev.reordered(order), order, [digests[i] for i in order]
+
+
+def _q(ev: Evidence, truth: np.ndarray) -> np.ndarray:
+    return np.clip((truth * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
+
+
+def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[Literal], model: Model,
+              max_length: int, accept: float = 0.0, weight: np.ndarray | None = None) -> Best:
+    """The rule whose addition to ``base`` most lowers the objective (score = change of the
+    objective, its own prior cost included), if that change is below ``accept``. ``weight``
+    multiplies each example's likelihood term (default 1: the objective itself).
+
+    Rules are searched as tuples of literal indices (:func:`ownctl.learn.model.literal_list`), level
+    by level, every level's candidates scored at once.
+    """
+    atoms = tuple(atoms)
+    lits = literal_list(atoms)
+    ok = compatible(atoms)
+    table = ev.literal_stack(lits)  # (2A, W, n)
+    live = ev.worlds.weights > 0
+    base_truth = ev.union(base)
+    t = ev.t
+    w = np.ones(ev.n) if weight is None else weight
+    q0 = _q(ev, base_truth)
+    base_nll = float((w * model.nll_terms(t, q0)).sum())
+    qstar = model.best_q(t)
+    cost = [model.cost(k) for k in range(max_length + 1)]
+    min_cost = [model.min_cost(k) for k in range(max_length + 3)]
+    n_lits = len(lits)
+    column = np.arange(n_lits)
+    after = column[None, :] >= (2 * (column // 2 + 1))[:, None]  # after[x, y]: y's atom comes after x's
+    best_at: tuple[int, int] | None = None  # (level, node index) of the best rule
+    best, second, pruned = math.inf, math.inf, math.inf
+    # per level: (level, parent, literal, score) arrays of the children covering what their parent covers
+    twins: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]] = []
+    levels: list[tuple[np.ndarray, np.ndarray]] = []  # per level: (parent index, added literal)
+    allowed = np.ones((1, n_lits), dtype=bool)  # literals each node may still be extended with
+    truths = np.ones((1, *live.shape), dtype=bool)
+    for length in range(max_length + 1):
+        q = _q(ev, truths | base_truth[None])
+        scores = (w * model.nll_terms(t, q)).sum(axis=-1) - base_nll + cost[length]
+        top_k = int(np.argmin(scores))  # the first of the lowest: canonical order among equal scores
+        top = float(scores[top_k])
+        if top < best:
+            rest = np.delete(scores, top_k)
+            second = min(second, best, float(rest.min()) if len(rest) else math.inf)
+            best, best_at = top, (length, top_k)
+        else:
+            second = min(second, top)
+        if length == max_length:
+            break
+        lo = np.clip(qstar[None], q0[None], q)
+        lo_nll = (w * model.nll_terms(t, lo)).sum(axis=-1) - base_nll
+        bounds = lo_nll + min_cost[length + 1]
+        keep = bounds < min(best, accept) + CAP
+        if not keep.all():
+            pruned = min(pruned, float(bounds[~keep].min()))
+        parents, added = np.nonzero(allowed & keep[:, None])  # in canonical (lexicographic) order
+        if not len(added):
+            break
+        child = truths[parents] & table[added]
+        same = np.all((child == truths[parents]) | ~live[None], axis=(1, 2))
+        if same.any():  # covers what its parent covers, for a higher cost: never the best
+            k_same = parents[same]
+            twins.append((length, k_same, added[same], scores[k_same] + cost[length + 1] - cost[length]))
+            # a twin's refinements are refinements of its parent with two literals more
+            pruned = min(pruned, float(lo_nll[k_same].min()) + min_cost[length + 2])
+            parents, added, child = parents[~same], added[~same], child[~same]
+        if not len(added):
+            break
+        levels.append((parents, added))
+        allowed = allowed[parents] & ok[added] & after[added]
+        truths = child
+    if best_at is None or best >= accept:
+        lower = min(best, pruned, *(float(x[3].min()) for x in twins))
+        return Best(None, best, lower, lower)
+    level, k = best_at
+    found: list[int] = []
+    for parents, added in reversed(levels[:level]):
+        found.append(int(added[k]))
+        k = int(parents[k])
+    rule = Rule(action, tuple(lits[x] for x in reversed(found)))
+    mine: list[int] = []
+    others = math.inf
+    for lv, k_same, added_same, values in twins:
+        of_best = (k_same == best_at[1]) if lv == best_at[0] else np.zeros(len(k_same), dtype=bool)
+        mine += [int(x) for x in added_same[of_best]]
+        if not of_best.all():
+            others = min(others, float(values[~of_best].min()))
+    return Best(rule, best, min(second, pruned, others), min(best, pruned),
+                tuple(rule.with_literal(lits[x]) for x in mine))
+
+@dataclass(frozen=True)
+class Step:
+    """One greedy addition: to ``before`` the learner added ``rule`` with ``score`` (< 0); every
+    other candidate scored at least ``score + margin``."""
+
+    before: tuple[Rule, ...]
+    rule: Rule
+    score: float
+    margin: float  # over every candidate but the twins
+    twins: tuple[tuple[Rule, float], ...] = ()  # the chosen rule's twins and their scores
+
+
+@dataclass(frozen=True)
+class Drop:
+    """One pruning decision on ``rule`` within ``current``: ``value`` = objective change of
+    removing it (removed when <= 0)."""
+
+    current: tuple[Rule, ...]
+    rule: Rule
+    value: float
+
+
+@dataclass(frozen=True)
+class Trace:
+    """Every decision of one re-induction, enough to certify it for one more example."""
+
+    steps: tuple[Step, ...]
+    stop: tuple[tuple[Rule, ...], float] | None  # (rules, lower bound of every candidate's score)
+    drops: tuple[Drop, ...]
+    result: tuple[Rule, ...]
+    allow_weight: float = 1.0  # the weight of allow examples in the greedy scoring
+    objective: float = 0.0  # of the result (likelihood and prior, unweighted)
+
+
+def _objective_nll(model: Model, ev: Evidence, rules: Sequence[Rule]) -> float:
+    return float(model.nll_terms(ev.t, ev.q(rules)).sum())
+
+
+def _weights(ev: Evidence, allow_weight: float) -> np.ndarray:
+    """Scoring weight per example: ``allow_weight`` for an allow (value 0), 1 for a forbid."""
+    return 1.0 + (allow_weight - 1.0) * (1.0 - ev.t)
+
+
+def objective(model: Model, ev: Evidence, rules: Sequence[Rule]) -> float:
+    """``-log`` (likelihood x prior) of ``rules`` for the examples, up to a constant."""
+    return _objective_nll(model, ev, rules) + model.rules_cost(rules)
+
+
+def reinduce_greedy(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[Literal],
+                    model: Model, max_length: int, max_rules: int, allow_weight: float = 1.0) -> Trace:
+    """Greedy covering around the ``given`` rules (kept as they are), traced: add the rule that most
+    lowers the objective, with allow examples weighted ``allow_weight`` in that choice, while it
+    lowers it; then drop, in turn, each learned rule whose removal does not raise the objective."""
+    weight = _weights(ev, allow_weight)
+    current = tuple(given)
+    steps: list[Step] = []
+    stop = None
+    for _ in range(max_rules):
+        found = best_rule(ev, action, current, atoms, model, max_length, weight=weight)
+        if found.rule is None:
+            stop = (current, found.lower)
+            break
+        size = len(found.rule.literals)
+        twin_score = found.score + model.cost(size + 1) - model.cost(size)
+        steps.append(Step(current, found.rule, found.score, found.runner_up - found.score,
+                          tuple((r, twin_score) for r in found.twins)))
+        current = (*current, found.rule)
+    drops: list[Drop] = []
+    for rule in [r for r in current if r not in given]:
+        rest = tuple(r for r in current if r != rule)
+        value = (_objective_nll(model, ev, rest) - _objective_nll(model, ev, current)
+                 - model.cost(len(rule.literals)))
+        drops.append(Drop(current, rule, value))
+        if value <= 0:
+            current = rest
+    return Trace(tuple(steps), stop, tuple(drops), current, allow_weight, objective(model, ev, current))
+
+
+#: Allow-example weights of the greedy runs: 1 (the objective) and a precision-minded run that
+#: avoids covering allowed examples first (a disjunction the objective's greedy order would cover
+#: with one over-general rule).
+ALLOW_WEIGHTS = (1.0, 16.0)
+
+
+@dataclass(frozen=True)
+class Choice:
+    """The greedy runs of one re-induction and the one chosen (the lowest objective, first on ties)."""
+
+    runs: tuple[Trace | None, ...]  # None: a run not needed (see :func:`reinduce`)
+    chosen: int
+
+    @property
+    def result(self) -> tuple[Rule, ...]:
+        """The chosen run's rules."""
+        run = self.runs[self.chosen]
+        assert run is not None
+        return run.result
+
+
+def _choose(runs: Sequence[Trace | None]) -> int:
+    """The run with the lowest objective (the first on ties)."""
+    return int(np.argmin([math.inf if r is None else r.objective for r in runs]))
+
+
+def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[Literal], model: Model,
+             max_length: int, max_rules: int, earlier: Choice | None = None, new: int | None = None
+             ) -> Choice:
+    """The most probable rule set around the ``given`` rules found by the greedy runs of
+    :data:`ALLOW_WEIGHTS`, traced. ``ev`` should be in canonical order (:func:`canonical_order`)
+    for the result to depend on the set of examples only.
+
+    ``earlier``: the result of this function on the same examples but example ``new``; each of its
+    runs that :func:`certify_greedy` proves unchanged is kept instead of being searched again.
+    """
+    runs: list[Trace | None] = []
+    for k, weight in enumerate(ALLOW_WEIGHTS):
+        run = None
+        if k and not _overcovers(ev, runs[0].result if runs[0] else ()):
+            runs.append(None)
+            continue
+        if earlier is not None and new is not None and earlier.runs[k] is not None:
+            run = certify_greedy(earlier.runs[k], ev, new, model)
+        if run is None:
+            run = reinduce_greedy(ev, action, given, atoms, model, max_length, max_rules, weight)
+        runs.append(run)
+    return Choice(tuple(runs), _choose(runs))
+
+
+OVERCOVER = 0.999
+
+
+def _overcovers(ev: Evidence, rules: Sequence[Rule]) -> bool:
+    """Whether the rules forbid some allowed example (then the precision-minded runs are tried)."""
+    return bool(np.any(ev.q(rules)[ev.t < 0.5] >= OVERCOVER))
+
+
+def _nll_one(model: Model, ev: Evidence, i: int, rules: Sequence[Rule]) -> float:
+    truth = ev.union(rules)[:, i]
+    q = float(np.clip((truth * ev.worlds.weights[:, i]).sum(), 0.0, 1.0))
+    return float(model.nll_terms(np.array(ev.t[i]), np.array(q)))
+
+
+def _nll_lo(model: Model, ev: Evidence, i: int, rules: Sequence[Rule]) -> tuple[float, float]:
+    """(nll of example ``i`` under ``rules``, least nll any superset of ``rules`` could give it)."""
+    truth = ev.union(rules)[:, i]
+    q = float(np.clip((truth * ev.worlds.weights[:, i]).sum(), 0.0, 1.0))
+    t = np.array(ev.t[i])
+    lo = float(np.clip(model.best_q(t), q, 1.0))
+    return float(model.nll_terms(t, np.array(q))), float(model.nll_terms(t, np.array(lo)))
+
+
+def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | None:
+    """The trace of :func:`reinduce_greedy` on ``ev`` if ``trace`` (made on ``ev`` without example
+    ``i``) provably takes the same decisions with example ``i`` added; None when that is not certain.
+
+    Adding example ``i`` shifts each candidate's score by the change of that example's term alone:
+    the chosen rule's shift is known, every other candidate's is at least the least shift any rule
+    could give (its term at the best reachable forbid probability); a decision stands when that
+    cannot close its margin. Margins in the returned trace are the guaranteed (smaller) ones.
+    """
+    w = float(_weights(ev, trace.allow_weight)[i])
+    steps = []
+    for st in trace.steps:
+        now, lo = _nll_lo(model, ev, i, st.before)
+        shift = w * (_nll_one(model, ev, i, (*st.before, st.rule)) - now)
+        least = w * (lo - now)
+        gap = shift - least
+        score = st.score + shift
+        if score >= -SLACK or (gap > 0 and gap >= st.margin - SLACK):
+            return None
+        twins = []
+        for twin, value in st.twins:  # each twin's shift is known exactly
+            value += w * (_nll_one(model, ev, i, (*st.before, twin)) - now)
+            if value < score + SLACK:
+                return None
+            twins.append((twin, value))
+        steps.append(replace(st, score=score, margin=st.margin - gap, twins=tuple(twins)))
+    stop = trace.stop
+    if stop is not None:
+        now, lo = _nll_lo(model, ev, i, stop[0])
+        lower = stop[1] + w * (lo - now)
+        if lower < SLACK:
+            return None
+        stop = (stop[0], lower)
+    drops = []
+    for d in trace.drops:
+        rest = tuple(r for r in d.current if r != d.rule)
+        value = d.value + _nll_one(model, ev, i, rest) - _nll_one(model, ev, i, d.current)
+        if abs(value) < SLACK or (value <= 0) != (d.value <= 0):
+            return None
+        drops.append(replace(d, value=value))
+    value = trace.objective + _nll_one(model, ev, i, trace.result)
+    return Trace(tuple(steps), stop, tuple(drops), trace.result, trace.allow_weight, value)
+
+
