@@ -82,13 +82,31 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     atoms = tuple(atoms)
     lits = literal_list(atoms)
     ok = compatible(atoms)
-    table = ev.literal_stack(lits)  # (2A, W, n)
-    live = ev.worlds.weights > 0
-    base_truth = ev.union(base)
+    # only (world, example) pairs of positive weight matter: truth tables are kept over those pairs,
+    # and an example's forbid probability is a product with the pairs' weight matrix
+    ni, wi = np.nonzero(ev.worlds.weights.T > 0)  # grouped by example
+    pair_weight = ev.worlds.weights[wi, ni]
+    starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]]) if len(ni) else np.zeros(0, dtype=int)
+    table = ev.literal_stack(lits)[:, wi, ni]  # (2A, P)
+    base_truth = ev.union(base)[wi, ni]
     t = ev.t
     w = np.ones(ev.n) if weight is None else weight
-    q0 = _q(ev, base_truth)
-    base_nll = float((w * model.nll_terms(t, q0)).sum())
+    sign = np.where(t >= 0.5, 1.0, -1.0) if np.all((t == 0) | (t == 1)) else None
+
+    def nll(q: np.ndarray) -> np.ndarray:
+        """Weighted likelihood terms summed over examples, for each row of forbid probabilities."""
+        if sign is None:
+            return (w * model.nll_terms(t, q)).sum(axis=-1)
+        p = model.noise + (1 - 2 * model.noise) * q
+        return -(w * np.log(np.where(sign > 0, p, 1.0 - p))).sum(axis=-1)
+
+    def forbid(truth: np.ndarray) -> np.ndarray:
+        if not len(ni):
+            return np.zeros((len(truth), ev.n))
+        return np.clip(np.add.reduceat(truth * pair_weight, starts, axis=1), 0.0, 1.0)
+
+    q0 = forbid(base_truth[None])[0]
+    base_nll = float(nll(q0[None])[0])
     qstar = model.best_q(t)
     cost = [model.cost(k) for k in range(max_length + 1)]
     min_cost = [model.min_cost(k) for k in range(max_length + 3)]
@@ -101,10 +119,10 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     twins: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]] = []
     levels: list[tuple[np.ndarray, np.ndarray]] = []  # per level: (parent index, added literal)
     allowed = np.ones((1, n_lits), dtype=bool)  # literals each node may still be extended with
-    truths = np.ones((1, *live.shape), dtype=bool)
+    truths = np.ones((1, len(wi)), dtype=bool)
     for length in range(max_length + 1):
-        q = _q(ev, truths | base_truth[None])
-        scores = (w * model.nll_terms(t, q)).sum(axis=-1) - base_nll + cost[length]
+        q = forbid(truths | base_truth[None])
+        scores = nll(q) - base_nll + cost[length]
         top_k = int(np.argmin(scores))  # the first of the lowest: canonical order among equal scores
         top = float(scores[top_k])
         if top < best:
@@ -115,8 +133,7 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
             second = min(second, top)
         if length == max_length:
             break
-        lo = np.clip(qstar[None], q0[None], q)
-        lo_nll = (w * model.nll_terms(t, lo)).sum(axis=-1) - base_nll
+        lo_nll = nll(np.clip(qstar[None], q0[None], q)) - base_nll
         bounds = lo_nll + min_cost[length + 1]
         keep = bounds < min(best, accept) + CAP
         if not keep.all():
@@ -125,7 +142,7 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
         if not len(added):
             break
         child = truths[parents] & table[added]
-        same = np.all((child == truths[parents]) | ~live[None], axis=(1, 2))
+        same = (child == truths[parents]).all(axis=1)
         if same.any():  # covers what its parent covers, for a higher cost: never the best
             k_same = parents[same]
             twins.append((length, k_same, added[same], scores[k_same] + cost[length + 1] - cost[length]))
@@ -205,15 +222,17 @@ def objective(model: Model, ev: Evidence, rules: Sequence[Rule]) -> float:
 
 
 def reinduce_greedy(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[Literal],
-                    model: Model, max_length: int, max_rules: int, allow_weight: float = 1.0) -> Trace:
+                    model: Model, max_length: int, max_rules: int, allow_weight: float = 1.0,
+                    known: Partial | None = None) -> Trace:
     """Greedy covering around the ``given`` rules (kept as they are), traced: add the rule that most
     lowers the objective, with allow examples weighted ``allow_weight`` in that choice, while it
-    lowers it; then drop, in turn, each learned rule whose removal does not raise the objective."""
+    lowers it; then drop, in turn, each learned rule whose removal does not raise the objective.
+    ``known``: decisions already proved for these examples (:func:`certify_greedy`), not searched again."""
     weight = _weights(ev, allow_weight)
-    current = tuple(given)
-    steps: list[Step] = []
-    stop = None
-    for _ in range(max_rules):
+    steps: list[Step] = list(known.steps) if known else []
+    current = (*steps[-1].before, steps[-1].rule) if steps else tuple(given)
+    stop = known.stop if known else None
+    while stop is None and len(steps) < max_rules:
         found = best_rule(ev, action, current, atoms, model, max_length, weight=weight)
         if found.rule is None:
             stop = (current, found.lower)
@@ -232,6 +251,15 @@ def reinduce_greedy(ev: Evidence, action: str, given: Sequence[Rule], atoms: Seq
         if value <= 0:
             current = rest
     return Trace(tuple(steps), stop, tuple(drops), current, allow_weight, objective(model, ev, current))
+
+
+@dataclass(frozen=True)
+class Partial:
+    """The decisions of a trace proved to stand with one more example: a prefix of its steps, and
+    its stop when every step stands."""
+
+    steps: tuple[Step, ...]
+    stop: tuple[tuple[Rule, ...], float] | None = None
 
 
 #: Allow-example weights of the greedy runs: 1 (the objective) and a precision-minded run that
@@ -276,10 +304,15 @@ def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[L
         if k and not _overcovers(ev, runs[0].result if runs[0] else ()):
             runs.append(None)
             continue
+        known = None
         if earlier is not None and new is not None and earlier.runs[k] is not None:
-            run = certify_greedy(earlier.runs[k], ev, new, model)
+            proved = certify_greedy(earlier.runs[k], ev, new, model)
+            if isinstance(proved, Trace):
+                run = proved
+            else:
+                known = proved
         if run is None:
-            run = reinduce_greedy(ev, action, given, atoms, model, max_length, max_rules, weight)
+            run = reinduce_greedy(ev, action, given, atoms, model, max_length, max_rules, weight, known)
         runs.append(run)
     return Choice(tuple(runs), _choose(runs))
 
@@ -307,9 +340,10 @@ def _nll_lo(model: Model, ev: Evidence, i: int, rules: Sequence[Rule]) -> tuple[
     return float(model.nll_terms(t, np.array(q))), float(model.nll_terms(t, np.array(lo)))
 
 
-def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | None:
+def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | Partial:
     """The trace of :func:`reinduce_greedy` on ``ev`` if ``trace`` (made on ``ev`` without example
-    ``i``) provably takes the same decisions with example ``i`` added; None when that is not certain.
+    ``i``) provably takes the same decisions with example ``i`` added; otherwise the decisions that
+    provably stand (:class:`Partial`), from which the search goes on.
 
     Adding example ``i`` shifts each candidate's score by the change of that example's term alone:
     the chosen rule's shift is known, every other candidate's is at least the least shift any rule
@@ -317,7 +351,7 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
     cannot close its margin. Margins in the returned trace are the guaranteed (smaller) ones.
     """
     w = float(_weights(ev, trace.allow_weight)[i])
-    steps = []
+    steps: list[Step] = []
     for st in trace.steps:
         now, lo = _nll_lo(model, ev, i, st.before)
         shift = w * (_nll_one(model, ev, i, (*st.before, st.rule)) - now)
@@ -325,12 +359,12 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
         gap = shift - least
         score = st.score + shift
         if score >= -SLACK or (gap > 0 and gap >= st.margin - SLACK):
-            return None
+            return Partial(tuple(steps))
         twins = []
         for twin, value in st.twins:  # each twin's shift is known exactly
             value += w * (_nll_one(model, ev, i, (*st.before, twin)) - now)
             if value < score + SLACK:
-                return None
+                return Partial(tuple(steps))
             twins.append((twin, value))
         steps.append(replace(st, score=score, margin=st.margin - gap, twins=tuple(twins)))
     stop = trace.stop
@@ -338,16 +372,14 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
         now, lo = _nll_lo(model, ev, i, stop[0])
         lower = stop[1] + w * (lo - now)
         if lower < SLACK:
-            return None
+            return Partial(tuple(steps))
         stop = (stop[0], lower)
     drops = []
     for d in trace.drops:
         rest = tuple(r for r in d.current if r != d.rule)
         value = d.value + _nll_one(model, ev, i, rest) - _nll_one(model, ev, i, d.current)
         if abs(value) < SLACK or (value <= 0) != (d.value <= 0):
-            return None
+            return Partial(tuple(steps), stop)
         drops.append(replace(d, value=value))
     value = trace.objective + _nll_one(model, ev, i, trace.result)
     return Trace(tuple(steps), stop, tuple(drops), trace.result, trace.allow_weight, value)
-
-
