@@ -25,6 +25,7 @@ import numpy as np
 
 from ownctl.learn.evidence import MAX_NAMED_AGENTS, Evidence
 from ownctl.learn.model import Model, compatible, literal_list
+from ownctl.logic.prob import atom_truth
 from ownctl.logic.rules import Literal, Rule
 
 __all__ = ["MAX_NAMED_AGENTS", "Best", "Trace", "best_rule", "canonical_order", "certify_greedy", "reinduce"]
@@ -325,19 +326,40 @@ def _overcovers(ev: Evidence, rules: Sequence[Rule]) -> bool:
     return bool(np.any(ev.q(rules)[ev.t < 0.5] >= OVERCOVER))
 
 
-def _nll_one(model: Model, ev: Evidence, i: int, rules: Sequence[Rule]) -> float:
-    truth = ev.union(rules)[:, i]
-    q = float(np.clip((truth * ev.worlds.weights[:, i]).sum(), 0.0, 1.0))
-    return float(model.nll_terms(np.array(ev.t[i]), np.array(q)))
+class _Example:
+    """One example's truth per ownership world, for the few rule sets a certificate looks at."""
 
+    def __init__(self, ev: Evidence, i: int, model: Model) -> None:
+        self.ev, self.i, self.model = ev, i, model
+        self.weights = ev.worlds.weights[:, i]
+        self.t = np.array(ev.t[i])
+        self._lits: dict[Literal, np.ndarray] = {}
 
-def _nll_lo(model: Model, ev: Evidence, i: int, rules: Sequence[Rule]) -> tuple[float, float]:
-    """(nll of example ``i`` under ``rules``, least nll any superset of ``rules`` could give it)."""
-    truth = ev.union(rules)[:, i]
-    q = float(np.clip((truth * ev.worlds.weights[:, i]).sum(), 0.0, 1.0))
-    t = np.array(ev.t[i])
-    lo = float(np.clip(model.best_q(t), q, 1.0))
-    return float(model.nll_terms(t, np.array(q))), float(model.nll_terms(t, np.array(lo)))
+    def q(self, rules: Sequence[Rule]) -> float:
+        """P(some rule holds) for this example."""
+        out = np.zeros(len(self.weights), dtype=bool)
+        for rule in rules:
+            holds = np.ones(len(self.weights), dtype=bool)
+            for lit in rule.literals:
+                col = self._lits.get(lit)
+                if col is None:
+                    atom = atom_truth(lit, self.ev.frame, self.ev.worlds)
+                    col = atom[:, self.i] if atom.shape[1] > 1 else atom[:, 0]
+                    col = self._lits[lit] = np.broadcast_to(~col if lit.negated else col, self.weights.shape)
+                holds &= col
+            out |= holds
+        return float(np.clip((out * self.weights).sum(), 0.0, 1.0))
+
+    def nll(self, rules: Sequence[Rule]) -> float:
+        """This example's likelihood term under ``rules``."""
+        return float(self.model.nll_terms(self.t, np.array(self.q(rules))))
+
+    def nll_lo(self, rules: Sequence[Rule]) -> tuple[float, float]:
+        """(the term under ``rules``, the least term any superset of ``rules`` could give)."""
+        q = self.q(rules)
+        lo = float(np.clip(self.model.best_q(self.t), q, 1.0))
+        terms = self.model.nll_terms(self.t, np.array([q, lo]))
+        return float(terms[0]), float(terms[1])
 
 
 def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | Partial:
@@ -351,10 +373,11 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
     cannot close its margin. Margins in the returned trace are the guaranteed (smaller) ones.
     """
     w = float(_weights(ev, trace.allow_weight)[i])
+    one = _Example(ev, i, model)
     steps: list[Step] = []
     for st in trace.steps:
-        now, lo = _nll_lo(model, ev, i, st.before)
-        shift = w * (_nll_one(model, ev, i, (*st.before, st.rule)) - now)
+        now, lo = one.nll_lo(st.before)
+        shift = w * (one.nll((*st.before, st.rule)) - now)
         least = w * (lo - now)
         gap = shift - least
         score = st.score + shift
@@ -362,14 +385,14 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
             return Partial(tuple(steps))
         twins = []
         for twin, value in st.twins:  # each twin's shift is known exactly
-            value += w * (_nll_one(model, ev, i, (*st.before, twin)) - now)
+            value += w * (one.nll((*st.before, twin)) - now)
             if value < score + SLACK:
                 return Partial(tuple(steps))
             twins.append((twin, value))
         steps.append(replace(st, score=score, margin=st.margin - gap, twins=tuple(twins)))
     stop = trace.stop
     if stop is not None:
-        now, lo = _nll_lo(model, ev, i, stop[0])
+        now, lo = one.nll_lo(stop[0])
         lower = stop[1] + w * (lo - now)
         if lower < SLACK:
             return Partial(tuple(steps))
@@ -377,9 +400,9 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
     drops = []
     for d in trace.drops:
         rest = tuple(r for r in d.current if r != d.rule)
-        value = d.value + _nll_one(model, ev, i, rest) - _nll_one(model, ev, i, d.current)
+        value = d.value + one.nll(rest) - one.nll(d.current)
         if abs(value) < SLACK or (value <= 0) != (d.value <= 0):
             return Partial(tuple(steps), stop)
         drops.append(replace(d, value=value))
-    value = trace.objective + _nll_one(model, ev, i, trace.result)
+    value = trace.objective + one.nll(trace.result)
     return Trace(tuple(steps), stop, tuple(drops), trace.result, trace.allow_weight, value)

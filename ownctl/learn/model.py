@@ -118,4 +118,10 @@ def rule_counts(atoms: tuple[Literal, ...], max_length: int) -> tuple[int, ...]:
 
 def model_for(atoms: Sequence[Literal], max_length: int) -> Model:
     """The model over the vocabulary ``atoms`` with rules of at most ``max_length`` literals."""
-    return Model(rule_counts(tuple(atoms), max_length), LABEL_NOISE, RULE_COST, LITERAL_COST, COUNT_WEIGHT)
+    return _model(tuple(atoms), max_length, LABEL_NOISE, RULE_COST, LITERAL_COST, COUNT_WEIGHT)
+
+
+@functools.lru_cache(maxsize=256)
+def _model(atoms: tuple[Literal, ...], max_length: int, noise: float, rule_cost: float, literal_cost: float,
+           count_weight: float) -> Model:
+    return Model(rule_counts(atoms, max_length), noise, rule_cost, literal_cost, count_weight)
