@@ -7,14 +7,13 @@
 * ``cover_rule``: a given forbid norm -> specialise it against the allowed examples (Gricean), add.
 * ``uncover_rule``: a given allow norm -> specialise it against the forbidden examples, subtract it.
 
-Two scorings share this structure (``LearnConfig.learner``):
+Two learners share the entry points (``LearnConfig.learner``):
 
 * ``paper``: the original system's counts and thresholds (crisp false-positive counts with one error
-  tolerated for examples, soft false/true-positive values for given rules);
-* ``ours``: the change in negative log-likelihood of all stored permissions under a label-noise model
-  (the instructor says what the rules imply with probability 1 - noise), plus a penalty per literal.
-  Uncertain ownership then counts as evidence in proportion to its probability instead of being cut
-  at 0.5, which is what makes noisy-ownership learning work.
+  tolerated for examples, soft false/true-positive values for given rules), with the conflict gate;
+* ``ours``: after every permission, the most probable rule set of all stored permissions under the
+  stated model of :mod:`ownctl.learn.model` (uncertain ownership counts in proportion to its
+  probability), found by :mod:`ownctl.learn.exact`; given norms go through cover/uncover rule.
 
 Everything is deterministic: canonical literal order, stable sorts, ordered example sweeps.
 """
@@ -32,12 +31,9 @@ from ownctl.learn import exact
 from ownctl.learn.algebra import merge_rule, rule_diff, specialising
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.model import Model, model_for
-from ownctl.learn.search import rule_search, sizes
+from ownctl.learn.search import rule_search
 from ownctl.logic.rules import ANY, Norm, Rule
 
-LABEL_NOISE = 0.003  # the instructor is almost always right about permissions
-LITERAL_PENALTY = 0.7  # nats per literal in the "ours" score
-RULE_PENALTY = 1.5  # nats per rule: a new rule must explain more than one uncertain example
 MAX_RULES = 5  # ours: rules re-induction may add to the given ones
 TRACES = 4096  # ours: re-induction traces kept for certification (a memo: results never depend on it)
 _traces: OrderedDict[tuple, exact.Choice] = OrderedDict()
@@ -52,11 +48,6 @@ class Outcome:
     accuracy: float
     given: tuple[Rule, ...] = ()  # after a norm: the rules that stand for what instructors said
 
-
-def nll(ev: Evidence, q: np.ndarray) -> np.ndarray:
-    """Negative log-likelihood of the permissions given forbid probabilities q (..., n) -> (...)."""
-    p = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * q
-    return -(ev.t * np.log(p) + (1 - ev.t) * np.log(1 - p)).sum(axis=-1)
 
 
 class Inducer:
@@ -85,34 +76,20 @@ class Inducer:
         return rule_search(self.ev, init, self.atoms, score, threshold, filters, self.cfg.beam,
                            self.cfg.max_conditions, stop_at_success=not self.ours, exclude=exclude)
 
-    def _delta_add(self, rules: Sequence[Rule]):  # type: ignore[no-untyped-def]
-        """Ours: score of adding each candidate to ``rules`` (lower is better, < 0 improves)."""
-        base_truth = self.ev.union(rules)
-        base = float(nll(self.ev, self.ev.prob(base_truth)))
-
-        def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
-            q = self.ev.prob(truths | base_truth[None])
-            size = sizes(cands) + 1
-            return nll(self.ev, q) - base + LITERAL_PENALTY * (size - 1) + RULE_PENALTY
-
-        return score
-
-    # -- Algorithm 1 -------------------------------------------------------------------------
+    # -- Algorithm 1 (paper) -----------------------------------------------------------------
     def cover_example(self, rules: list[Rule], i: int) -> list[Rule]:
         """Add a rule covering forbid example ``i`` (unless no acceptable rule exists)."""
         neg = ~self.ev.positives
         covers_new = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
-        if self.ours:
-            result = self._search(Rule(self.action), self._delta_add(rules), -1e-9, (covers_new,), rules)
-        else:
-            def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
-                return (self.ev.prob(truths)[:, neg] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
 
-            thr = max(1.0, self.cfg.example_tolerance * neg.sum())
-            result = self._search(Rule(self.action), score, thr, (covers_new,), rules)
+        def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
+            return (self.ev.prob(truths)[:, neg] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
+
+        thr = max(1.0, self.cfg.example_tolerance * neg.sum())
+        result = self._search(Rule(self.action), score, thr, (covers_new,), rules)
         return self._merge(rules, result.rule) if result.success else rules
 
-    # -- Algorithm 2 -------------------------------------------------------------------------
+    # -- Algorithm 2 (paper) -----------------------------------------------------------------
     def uncover_example(self, rules: list[Rule], i: int) -> list[Rule]:
         """Specialise every rule that covers allow example ``i`` and subtract the specialisation."""
         current = list(rules)
@@ -120,28 +97,14 @@ class Inducer:
             if r not in current:
                 continue
             keeps_neg = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
-            if self.ours:
-                others = [x for x in current if x != r]
-                rest = self.ev.union(others)
-                r_truth = self.ev.truth(r)
-                base = float(nll(self.ev, self.ev.prob(self.ev.union(current))))
+            pos = self.ev.positives & self._covers(r)
 
-                def score(truths: np.ndarray, cands: Sequence[Rule], r=r, rest=rest, r_truth=r_truth,
-                          base=base) -> np.ndarray:
-                    q = self.ev.prob(rest[None] | (r_truth[None] & ~truths))
-                    extra = sizes(cands) - len(r.literals)
-                    return nll(self.ev, q) - base + LITERAL_PENALTY * extra
+            def score(truths: np.ndarray, cands: Sequence[Rule], pos=pos) -> np.ndarray:
+                covered = self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold
+                return covered.sum(axis=1).astype(float)
 
-                result = self._search(r, score, -1e-9, (keeps_neg,))
-            else:
-                pos = self.ev.positives & self._covers(r)
-
-                def score(truths: np.ndarray, cands: Sequence[Rule], pos=pos) -> np.ndarray:
-                    covered = self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold
-                    return covered.sum(axis=1).astype(float)
-
-                thr = max(1.0, self.cfg.example_tolerance * pos.sum())
-                result = self._search(r, score, thr, (keeps_neg,))
+            thr = max(1.0, self.cfg.example_tolerance * pos.sum())
+            result = self._search(r, score, thr, (keeps_neg,))
             if result.success:
                 current.remove(r)
                 for piece in rule_diff(r, result.rule):
@@ -229,12 +192,6 @@ def subtract(rules: Sequence[Rule], allow: Rule, merge=None) -> list[Rule]:  # t
     return out
 
 
-def agreement(ev: Evidence, rules: Sequence[Rule], i: int) -> float:
-    """P(the rules agree with permission ``i``) under the prior ownership of its object."""
-    q = float(ev.q(rules)[i])
-    return float(ev.t[i] * q + (1.0 - ev.t[i]) * (1.0 - q))
-
-
 def learn_permission(
     action: str, rules: Sequence[Rule], allows: Sequence[Rule], ev: Evidence, new: int,
     vocab: Vocabulary, cfg: LearnConfig, given: Sequence[Rule] = (),
@@ -269,8 +226,6 @@ def learn_permission(
             current = ind.cover_example(current, j)
         elif ev.t[j] < cfg.cover_threshold and q >= cfg.cover_threshold:
             current = ind.uncover_example(current, j)
-    for allow in allows if ind.ours else ():
-        current = subtract(current, allow, ind._merge)
     return Outcome(tuple(current), True, accuracy)
 
 

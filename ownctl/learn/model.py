@@ -5,10 +5,10 @@ over rule sets (:mod:`ownctl.learn.posterior`):
 
 * **Prior.** A rule set is a set of forbid rules (conjunctions of literals over the store's
   vocabulary, satisfiable and without implied literals). ``log P(R) = -sum over r in R of
-  cost(len(r)) + const``, with ``cost(l) = rule_cost + literal_cost * l + log N(l)``, where ``N(l)``
-  is the number of such rules of ``l`` literals: each rule pays for being one more rule, for its
-  length, and for which of the rules of its length it is (so the prior mass of all rules of one
-  length is bounded, and a long rule needs more evidence than a short one).
+  cost(len(r)) + const``, with ``cost(l) = rule_cost + literal_cost * l + count_weight * log N(l)``,
+  where ``N(l)`` is the number of such rules of ``l`` literals: each rule pays for being one more
+  rule and for its length (and, with ``count_weight`` 1, for which of the rules of its length it is,
+  a description-length prior). The defaults (1.5, 0.7, 0) were chosen on tuning norm families.
 * **Likelihood.** Ownership atoms are independent per object, with the probabilities the caller
   gives (claims or predictions); the instructor states what the rules imply, except with
   probability ``noise`` where the permission is the opposite: ``P(t_i = 1 | R) = noise + (1 - 2
