@@ -31,7 +31,7 @@ from ownctl.logic.rules import Literal, Rule
 __all__ = ["MAX_NAMED_AGENTS", "Best", "Trace", "best_rule", "canonical_order", "certify_greedy", "reinduce"]
 
 SLACK = 1e-9  # decisions closer than this to their threshold are never certified
-CAP = 3.0  # nats above the best (or above 0) within which subtrees are still explored, for margins
+CAP = 0.25  # nats above the best (or above 0) within which subtrees are still explored, for margins
 
 
 @dataclass(frozen=True)
