@@ -167,3 +167,15 @@ def test_families_on_the_command_line(tmp_path) -> None:
                           (["norms", "--families", "1", "--world", "w.toml"], "exclude each other")):
         bad = runner.invoke(ownctl_app, ["experiment", *args])
         assert bad.exit_code == 1 and message in bad.stderr
+
+
+def test_a_quick_generalisation_run_on_tuning_families() -> None:
+    """On a few tuning families: with every permission and exact ownership ours is exact in every
+    family (one-shot learning of rare norms included); with noisy ownership it is well above
+    allowing everything on average."""
+    fams = norm_families(4, first=0)
+    res = run_experiment("norms", 2, 0, 1, paper_blocks_world, "ours",
+                         conditions=["noiseless 1.00", "noisy 1.00", "allow everything"], families=fams)
+    exact_, noisy, allow = res.conditions
+    assert exact_.worst["accuracy"][1] == 1.0 and exact_.worst["f1"][1] == 1.0
+    assert noisy.accuracy.mean > allow.accuracy.mean + 0.1
