@@ -71,6 +71,21 @@ def _q(ev: Evidence, truth: np.ndarray) -> np.ndarray:
     return np.clip((truth * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
 
 
+def _pair_table(ev: Evidence, lits: tuple[Literal, ...], wi: np.ndarray, ni: np.ndarray) -> np.ndarray:
+    """(literals, pairs) truth of each literal at each positive-weight (world, example) pair, made
+    once per evidence."""
+    cache = ev.__dict__.setdefault("_pairs", {})
+    got = cache.get(lits)
+    if got is None:
+        rows = []
+        for k in range(0, len(lits), 2):  # an atom, then its negation
+            atom = atom_truth(lits[k], ev.frame, ev.worlds)
+            row = atom[0, ni] if atom.shape[0] == 1 else atom[wi, 0] if atom.shape[1] == 1 else atom[wi, ni]
+            rows += [row, ~row]
+        got = cache[lits] = np.array(rows, dtype=bool).reshape(len(lits), len(wi))
+    return got
+
+
 def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[Literal], model: Model,
               max_length: int, accept: float = 0.0, weight: np.ndarray | None = None) -> Best:
     """The rule whose addition to ``base`` most lowers the objective (score = change of the
@@ -88,7 +103,7 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     ni, wi = np.nonzero(ev.worlds.weights.T > 0)  # grouped by example
     pair_weight = ev.worlds.weights[wi, ni]
     starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]]) if len(ni) else np.zeros(0, dtype=int)
-    table = ev.literal_stack(lits)[:, wi, ni]  # (2A, P)
+    table = _pair_table(ev, lits, wi, ni)  # (2A, P)
     base_truth = ev.union(base)[wi, ni]
     t = ev.t
     w = np.ones(ev.n) if weight is None else weight
