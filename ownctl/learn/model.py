@@ -8,7 +8,7 @@ over rule sets (:mod:`ownctl.learn.posterior`):
   cost(len(r)) + const``, with ``cost(l) = rule_cost + literal_cost * l + count_weight * log N(l)``,
   where ``N(l)`` is the number of such rules of ``l`` literals: each rule pays for being one more
   rule and for its length (and, with ``count_weight`` 1, for which of the rules of its length it is,
-  a description-length prior). The defaults (1.5, 0.7, 0) were chosen on tuning norm families.
+  a description-length prior). The defaults (1.5, 1.0, 0) were chosen on tuning norm families and Table 3.
 * **Likelihood.** Ownership atoms are independent per object, with the probabilities the caller
   gives (claims or predictions); the instructor states what the rules imply, except with
   probability ``noise`` where the permission is the opposite: ``P(t_i = 1 | R) = noise + (1 - 2
@@ -32,7 +32,7 @@ from ownctl.logic.rules import Literal, Rule, implies
 
 LABEL_NOISE = 0.003
 RULE_COST = 1.5
-LITERAL_COST = 0.7
+LITERAL_COST = 1.0
 COUNT_WEIGHT = 0.0
 
 
