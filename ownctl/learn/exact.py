@@ -23,12 +23,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ownctl.learn.evidence import MAX_NAMED_AGENTS, Evidence
+from ownctl.learn.evidence import Evidence
 from ownctl.learn.model import Model, compatible, literal_list
 from ownctl.logic.prob import atom_truth
 from ownctl.logic.rules import Literal, Rule
-
-__all__ = ["MAX_NAMED_AGENTS", "Best", "Trace", "best_rule", "canonical_order", "certify_greedy", "reinduce"]
 
 SLACK = 1e-9  # decisions closer than this to their threshold are never certified
 CAP = 0.25  # nats above the best (or above 0) within which subtrees are still explored, for margins
@@ -65,10 +63,6 @@ def canonical_order(ev: Evidence) -> tuple[Evidence, list[int], list[bytes]]:
     if order == list(range(ev.n)):
         return ev, order, digests
     return ev.reordered(order), order, [digests[i] for i in order]
-
-
-def _q(ev: Evidence, truth: np.ndarray) -> np.ndarray:
-    return np.clip((truth * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
 
 
 def _pair_table(ev: Evidence, lits: tuple[Literal, ...], wi: np.ndarray, ni: np.ndarray) -> np.ndarray:

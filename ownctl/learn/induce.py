@@ -29,7 +29,7 @@ import numpy as np
 from ownctl.config import LearnConfig
 from ownctl.learn import exact
 from ownctl.learn.algebra import merge_rule, rule_diff, specialising
-from ownctl.learn.evidence import Evidence, Vocabulary
+from ownctl.learn.evidence import MAX_NAMED_AGENTS, Evidence, Vocabulary
 from ownctl.learn.model import Model, model_for
 from ownctl.learn.search import rule_search
 from ownctl.logic.rules import ANY, Norm, Rule
@@ -134,7 +134,7 @@ class Inducer:
         """The re-induction trace for the stored examples: certified from the trace of the same
         examples without example ``new`` when one is known and the certificate holds, else computed."""
         canon, order, digests = exact.canonical_order(self.ev)
-        truncated = self.ev.worlds.atoms if len(self.ev.frame.agents) > exact.MAX_NAMED_AGENTS else None
+        truncated = self.ev.worlds.atoms if len(self.ev.frame.agents) > MAX_NAMED_AGENTS else None
         key = (self.action, tuple(given), tuple(self.atoms), truncated, self.model, self.cfg.max_conditions,
                MAX_RULES)
         full = (key, tuple(digests))
