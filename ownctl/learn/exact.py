@@ -215,6 +215,7 @@ class Trace:
     result: tuple[Rule, ...]
     allow_weight: float = 1.0  # the weight of allow examples in the greedy scoring
     objective: float = 0.0  # of the result (likelihood and prior, unweighted)
+    swaps: tuple[Step, ...] = ()  # each learned rule, in turn, replaced by the best rule beside the others
 
 
 def _objective_nll(model: Model, ev: Evidence, rules: Sequence[Rule]) -> float:
@@ -236,7 +237,9 @@ def reinduce_greedy(ev: Evidence, action: str, given: Sequence[Rule], atoms: Seq
                     known: Partial | None = None) -> Trace:
     """Greedy covering around the ``given`` rules (kept as they are), traced: add the rule that most
     lowers the objective, with allow examples weighted ``allow_weight`` in that choice, while it
-    lowers it; then drop, in turn, each learned rule whose removal does not raise the objective.
+    lowers it; then, when it learned several rules, replace each, in turn, by the best rule beside
+    the others (up to :data:`SWAP_PASSES` passes, so that an early greedy choice can give way); then
+    drop, in turn, each learned rule whose removal does not raise the objective.
     ``known``: decisions already proved for these examples (:func:`certify_greedy`), not searched again."""
     weight = _weights(ev, allow_weight)
     steps: list[Step] = list(known.steps) if known else []
@@ -247,11 +250,29 @@ def reinduce_greedy(ev: Evidence, action: str, given: Sequence[Rule], atoms: Seq
         if found.rule is None:
             stop = (current, found.lower)
             break
-        size = len(found.rule.literals)
-        twin_score = found.score + model.cost(size + 1) - model.cost(size)
-        steps.append(Step(current, found.rule, found.score, found.runner_up - found.score,
-                          tuple((r, twin_score) for r in found.twins)))
+        steps.append(_step(model, current, found))
         current = (*current, found.rule)
+    fixed = tuple(r for r in current if r in given)
+    learned = [r for r in current if r not in given]
+    swaps: list[Step] = []
+    for _ in range(SWAP_PASSES if len(learned) >= 2 else 0):  # alone, a rule is the best one already
+        changed, k = False, 0
+        while k < len(learned):
+            others = (*fixed, *learned[:k], *learned[k + 1:])
+            found = best_rule(ev, action, others, atoms, model, max_length, math.inf, weight)
+            assert found.rule is not None  # every rule is accepted
+            swaps.append(_step(model, others, found))
+            if found.rule in others:  # the others do without it
+                learned.pop(k)
+                changed = True
+                continue
+            if found.rule != learned[k]:
+                learned[k] = found.rule
+                changed = True
+            k += 1
+        if not changed:
+            break
+    current = (*fixed, *learned)
     drops: list[Drop] = []
     for rule in [r for r in current if r not in given]:
         rest = tuple(r for r in current if r != rule)
@@ -260,7 +281,20 @@ def reinduce_greedy(ev: Evidence, action: str, given: Sequence[Rule], atoms: Seq
         drops.append(Drop(current, rule, value))
         if value <= 0:
             current = rest
-    return Trace(tuple(steps), stop, tuple(drops), current, allow_weight, objective(model, ev, current))
+    return Trace(tuple(steps), stop, tuple(drops), current, allow_weight, objective(model, ev, current),
+                 tuple(swaps))
+
+
+SWAP_PASSES = 2  # passes replacing each learned rule by the best rule beside the others
+
+
+def _step(model: Model, before: tuple[Rule, ...], found: Best) -> Step:
+    """The record of choosing ``found.rule`` beside ``before``, with its margin and twins."""
+    assert found.rule is not None
+    size = len(found.rule.literals)
+    twin_score = found.score + model.cost(size + 1) - model.cost(size)
+    return Step(before, found.rule, found.score, found.runner_up - found.score,
+                tuple((r, twin_score) for r in found.twins))
 
 
 @dataclass(frozen=True)
@@ -327,12 +361,14 @@ def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[L
     return Choice(tuple(runs), _choose(runs))
 
 
-OVERCOVER = 0.999
+CERTAIN = 0.999
 
 
 def _overcovers(ev: Evidence, rules: Sequence[Rule]) -> bool:
-    """Whether the rules forbid some allowed example (then the precision-minded runs are tried)."""
-    return bool(np.any(ev.q(rules)[ev.t < 0.5] >= OVERCOVER))
+    """Whether the rules get some example wrong with certainty (an allowed one forbidden, or a
+    forbidden one not forbidden): then the precision-minded run is tried as well."""
+    q = ev.q(rules)
+    return bool(np.any(q[ev.t < 0.5] >= CERTAIN) or np.any(q[ev.t >= 0.5] <= 1.0 - CERTAIN))
 
 
 class _Example:
@@ -385,20 +421,10 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
     one = _Example(ev, i, model)
     steps: list[Step] = []
     for st in trace.steps:
-        now, lo = one.nll_lo(st.before)
-        shift = w * (one.nll((*st.before, st.rule)) - now)
-        least = w * (lo - now)
-        gap = shift - least
-        score = st.score + shift
-        if score >= -SLACK or (gap > 0 and gap >= st.margin - SLACK):
+        got = _certify_step(st, one, w, improving=True)
+        if got is None:
             return Partial(tuple(steps))
-        twins = []
-        for twin, value in st.twins:  # each twin's shift is known exactly
-            value += w * (one.nll((*st.before, twin)) - now)
-            if value < score + SLACK:
-                return Partial(tuple(steps))
-            twins.append((twin, value))
-        steps.append(replace(st, score=score, margin=st.margin - gap, twins=tuple(twins)))
+        steps.append(got)
     stop = trace.stop
     if stop is not None:
         now, lo = one.nll_lo(stop[0])
@@ -406,6 +432,12 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
         if lower < SLACK:
             return Partial(tuple(steps))
         stop = (stop[0], lower)
+    swaps = []
+    for st in trace.swaps:
+        got = _certify_step(st, one, w, improving=False)
+        if got is None:
+            return Partial(tuple(steps), stop)
+        swaps.append(got)
     drops = []
     for d in trace.drops:
         rest = tuple(r for r in d.current if r != d.rule)
@@ -414,4 +446,22 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
             return Partial(tuple(steps), stop)
         drops.append(replace(d, value=value))
     value = trace.objective + one.nll(trace.result)
-    return Trace(tuple(steps), stop, tuple(drops), trace.result, trace.allow_weight, value)
+    return Trace(tuple(steps), stop, tuple(drops), trace.result, trace.allow_weight, value, tuple(swaps))
+
+
+def _certify_step(st: Step, one: _Example, w: float, improving: bool) -> Step | None:
+    """``st`` with its scores and margin shifted by the new example, if the choice provably stands
+    (and, when ``improving``, still lowers the objective); None otherwise."""
+    now, lo = one.nll_lo(st.before)
+    shift = w * (one.nll((*st.before, st.rule)) - now)
+    gap = shift - w * (lo - now)
+    score = st.score + shift
+    if (improving and score >= -SLACK) or (gap > 0 and gap >= st.margin - SLACK):
+        return None
+    twins = []
+    for twin, value in st.twins:  # each twin's shift is known exactly
+        value += w * (one.nll((*st.before, twin)) - now)
+        if value < score + SLACK:
+            return None
+        twins.append((twin, value))
+    return replace(st, score=score, margin=st.margin - gap, twins=tuple(twins))
