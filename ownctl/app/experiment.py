@@ -106,8 +106,15 @@ def run(
     csv_path: str | Path | None = None,
     plot_path: str | Path | None = None,
     progress: Callable[[int, int], None] | None = None,
+    families: int | None = None,
+    family_seed: int | None = None,
 ) -> ExperimentResult:
-    """Run ``experiment`` (norms, ownership, task) and write the optional CSV and plot files."""
+    """Run ``experiment`` (norms, ownership, task) and write the optional CSV and plot files.
+
+    ``families``: run the norms experiment on that many generated norm families of consecutive
+    seeds from ``family_seed`` (default: the start of the reserved evaluation range) instead of one
+    world.
+    """
     from ownctl.experiment.registry import get_experiment
     from ownctl.experiment.runner import check_settings, run_experiment
 
@@ -116,12 +123,13 @@ def run(
     conditions = task_conditions(task) if exp.name == "task" else None
     if exp.name != "task" and task != "both":
         raise BadValue(f"--task only applies to the task experiment, not {exp.name!r}")
+    chosen_families = _families(exp.name, families, family_seed, world)
     for what, path in (("csv", csv_path), ("plot", plot_path)):
         if path is not None and not Path(path).parent.exists():
             raise OwnctlError(f"cannot write the {what} file {str(path)!r}: its folder does not exist")
     factory, name, comparable = _world_factory(world)
     result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name,
-                            comparable)
+                            comparable, chosen_families)
     if csv_path is not None:
         write_csv(result, csv_path)
     if plot_path is not None:
@@ -129,6 +137,23 @@ def run(
 
         write_plot(result, plot_path)
     return result
+
+
+def _families(experiment: str, count: int | None, first: int | None, world: str | Path | None) -> list[Any]:
+    """The norm families of ``--families`` / ``--family-seed`` (none without ``--families``)."""
+    if count is None:
+        if first is not None:
+            raise BadValue("--family-seed needs --families N")
+        return []
+    if experiment != "norms":
+        raise BadValue(f"--families only applies to the norms experiment, not {experiment!r}")
+    if world is not None:
+        raise BadValue("--families and --world exclude each other: families draw their own worlds")
+    from ownctl.world.families import EVALUATION_SEEDS, norm_families
+
+    if first is not None and first < 0:
+        raise BadValue(f"--family-seed must be a non-negative integer, got {first}")
+    return norm_families(count, EVALUATION_SEEDS.start if first is None else first)
 
 
 CSV_COLUMNS = ("experiment", "learner", "trials", "seed", "condition", "group", "row", "metric", "mean",

@@ -44,12 +44,14 @@ PlotOpt = Annotated[str | None, typer.Option("--plot", metavar="FILE.png", help=
 
 
 def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
-         json_out: bool, csv: str | None, plot: str | None, quiet: bool) -> None:
+         json_out: bool, csv: str | None, plot: str | None, quiet: bool, families: int | None = None,
+         family_seed: int | None = None) -> None:
     from ownctl.app import experiment as app
 
     bar = None if quiet else _progress_bar(experiment)
     try:  # errors are reported by the command group, like every command's
-        result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, bar)
+        result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, bar, families,
+                         family_seed)
     finally:
         if bar is not None:
             bar.stop()
@@ -94,12 +96,20 @@ def norms(
     trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, world: WorldOpt = None,
     learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None,
     quiet: QuietOpt = False,
+    families: Annotated[int | None, typer.Option(
+        "--families", metavar="N", help="Run on N generated norm families instead of one world "
+        "(every action scored, with or without a norm); report the mean over families and the worst."
+    )] = None,
+    family_seed: Annotated[int | None, typer.Option(
+        "--family-seed", metavar="SEED", help="First family seed (default 1000, the evaluation range "
+        "1000-1099).")] = None,
 ) -> None:
     """Table 1: learn norms from permissions on some of the objects.
 
     Permissions are given on 100, 50 or 25% of the objects, with exact or noisy ownership.
     """
-    _run("norms", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet)
+    _run("norms", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet, families,
+         family_seed)
 
 
 @experiment_app.command("ownership")
@@ -144,11 +154,20 @@ def _num(value: Any, digits: int = 3) -> str:
     return f"{value:.{digits}f}" if isinstance(value, int | float) else ""
 
 
+def _worst(c: Any, metric: str) -> str:
+    """``0.812 (1042)``: the worst family's mean and its seed."""
+    seed, value = c.worst[metric]
+    return f"{value:.3f} ({seed})"
+
+
 def _headline(result: ExperimentResult) -> tuple[list[str], list[list[str]]]:
     """Columns and rows of the main table: for each condition a row of ours, then the paper's."""
     task = result.experiment.name == "task"
     second = {"task": "ownership", "ownership": "all"}.get(result.experiment.name)
     columns = ["condition", "source"] + (["mistakes"] if task else []) + ["accuracy", "F1"]
+    worst = any(c.worst for c in result.conditions)
+    if worst:
+        columns += ["worst acc", "worst F1"]
     if second:
         columns += [f"{second[:5]} acc", f"{second[:5]} F1"]
     refs = sorted({r for c in result.conditions for r in c.references})
@@ -156,6 +175,8 @@ def _headline(result: ExperimentResult) -> tuple[list[str], list[list[str]]]:
     for c in result.conditions:
         ours = [c.name, "ours"] + ([_pm(c.counts.get("mistakes"), 2)] if task else [])
         ours += [_pm(c.accuracy), _pm(c.f1)]
+        if worst:
+            ours += [_worst(c, "accuracy"), _worst(c, "f1")]
         if second:
             avg = c.groups[second].average
             ours += [_pm(avg["accuracy"]), _pm(avg["f1"])]
@@ -184,6 +205,8 @@ def render(result: ExperimentResult) -> None:
     columns, rows = _headline(result)
     comparable = result.extra.get("paper_comparable", True)
     also = " and the paper" if comparable else " (the paper's values are for its blocks world only)"
+    if "families" in result.extra:
+        also = " over norm families"
     head = Table(title=f"{exp.title}: ours ({result.learner} learner, mean±95% CI){also}",
                  caption=f"accuracy, F1 = {exp.headline}: {exp.groups.get(exp.headline, '')}",
                  box=box.SIMPLE_HEAD, collapse_padding=True, pad_edge=False)
@@ -206,8 +229,9 @@ def render(result: ExperimentResult) -> None:
                                end_section=r is group.average)
                 first = False
     console.print(detail)
-    for note in exp.metrics:
-        console.print(f"[dim]* {note}[/dim]")
+    notes = [*exp.metrics, *([result.extra["family_note"]] if "family_note" in result.extra else [])]
+    for note in notes:
+        console.print(f"[dim]* {note}[/dim]", markup=True)
     n = len(result.conditions)
     console.print(f"{plural(result.trials, 'trial')} x {plural(n, 'condition')} on {result.world} "
                   f"(seed {result.seed}, jobs {result.jobs}) in {result.seconds:.2f} s")

@@ -5,6 +5,10 @@ agent's label is 0.6 if it owns the object else 0.4, plus uniform noise of +-0.2
 for a fraction of the objects, for every action with a true norm, one object at a time. Inference
 and prediction are off, as in the paper. The learned rules are scored against the true norms on all
 objects with their true ownership.
+
+On a norm family (:class:`ownctl.world.families.NormFamily`) the same protocol gives permissions
+for, and scores, every action the family names, including those with no norm (where every
+permission allows).
 """
 
 from __future__ import annotations
@@ -18,8 +22,11 @@ from ownctl.config import LearnConfig, Settings
 from ownctl.experiment.metrics import Scores, rule_scores
 from ownctl.experiment.result import TrialResult
 from ownctl.experiment.truth import true_rules
+from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
+from ownctl.logic.rules import Rule
 from ownctl.mind import Mind, Switches
+from ownctl.world.families import NormFamily
 from ownctl.world.model import World, make_frame
 
 WorldFactory = Callable[[np.random.Generator], World]
@@ -53,25 +60,51 @@ def noisy_labels(truth: np.ndarray, rng: np.random.Generator, mean: float = 0.6,
     return np.clip(base + rng.uniform(-dev, dev, size=truth.shape), 0.0, 1.0)
 
 
-def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
-                rng: np.random.Generator) -> dict[str, Scores]:
-    """One trial of one condition; per-action scores of the learned rules."""
+@dataclass(frozen=True)
+class NormsSetup:
+    """What one trial gives a learner, and what it is scored against: the world, the ownership
+    claims (exact or noisy), the objects given permissions (in the order they are given), and per
+    scored action its true rules and true answer on every object (true owners)."""
+
+    world: World
+    claims: np.ndarray
+    chosen: np.ndarray
+    rules: dict[str, tuple[Rule, ...]]
+    answers: dict[str, np.ndarray]
+    true_frame: Frame
+
+
+def norms_setup(make_world: WorldFactory, cond: NormCondition, rng: np.random.Generator) -> NormsSetup:
+    """Draw one trial (world, claims, permitted objects) exactly as :func:`norms_trial` does, so
+    other learners can be run on the very same trials."""
     world = make_world(rng)
     truth = world.true_ownership()
     rules = true_rules(world)
+    if isinstance(make_world, NormFamily):  # its actions without a norm are given permissions too
+        rules = {a: rules.get(a, ()) for a in make_world.actions}
     true_frame = make_frame(world.objects, world.areas, world.agents, truth)
-    settings = Settings(learn=LearnConfig(learner=learner))
-    mind = Mind(world.agents, list(world.objects), world.areas, settings,
-                Switches(inference=False, prediction=False))
-    mind.claims[:] = noisy_labels(truth, rng) if cond.noisy else truth
+    claims = noisy_labels(truth, rng) if cond.noisy else truth
     n = len(world.objects)
     chosen = rng.permutation(n)[: int(round(cond.fraction * n))]
     answers = {a: p_forbidden(r, true_frame) for a, r in rules.items()}
+    return NormsSetup(world, claims, chosen, rules, answers, true_frame)
+
+
+def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
+                rng: np.random.Generator) -> dict[str, Scores]:
+    """One trial of one condition; per-action scores of the learned rules."""
+    setup = norms_setup(make_world, cond, rng)
+    world = setup.world
+    settings = Settings(learn=LearnConfig(learner=learner))
+    mind = Mind(world.agents, list(world.objects), world.areas, settings,
+                Switches(inference=False, prediction=False))
+    mind.claims[:] = setup.claims
     if not cond.baseline:
-        for obj in chosen:
-            for action in rules:
-                mind.permit(action, int(obj), float(answers[action][obj]))
-    return {a: rule_scores(answers[a], p_forbidden(mind.rules[a], true_frame)) for a in rules}
+        for obj in setup.chosen:
+            for action in setup.rules:
+                mind.permit(action, int(obj), float(setup.answers[action][obj]))
+    frame = setup.true_frame
+    return {a: rule_scores(setup.answers[a], p_forbidden(mind.rules[a], frame)) for a in setup.rules}
 
 
 def norms_result(make_world: WorldFactory, cond: NormCondition, learner: str,

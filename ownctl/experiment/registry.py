@@ -26,7 +26,8 @@ Paper = Mapping[str, Mapping[str, Any]]
 RULE_METRICS = (
     "rules: per action, an object counts as correct when (true - 0.5)(learned - 0.5) >= 0, with both "
     "rule sets evaluated on the object's true owners; positive = forbidden; precision and recall are 1 "
-    "when their class is empty; averaged over trials, then over actions"
+    "when their class is empty, so where an action forbids nothing F1 is 1 if the learned rules forbid "
+    "nothing there either and 0 if they forbid anything; averaged over trials, then over actions"
 )
 OWNERSHIP_METRICS = (
     "ownership: per agent, the posterior p is correct only when (true - 0.5)(p - 0.5) > 0 (strict: "

@@ -21,7 +21,8 @@ from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.norms import WorldFactory
 from ownctl.experiment.registry import Experiment, get_experiment
 from ownctl.experiment.result import TrialResult
-from ownctl.experiment.summary import ConditionSummary, summarise
+from ownctl.experiment.summary import FAMILY_NOTE, ConditionSummary, summarise, summarise_families
+from ownctl.world.families import NormFamily
 
 Progress = Callable[[int, int], None]  # (trials done, trials in total)
 CHUNKS_PER_JOB = 6
@@ -76,6 +77,8 @@ def _condition_dict(c: ConditionSummary) -> dict[str, Any]:
     out["groups"] = {k: g.as_dict() for k, g in c.groups.items()}
     out["trials"] = c.trials
     out["trial_seconds"] = c.seconds
+    if c.worst:
+        out["worst_family"] = {m: {"seed": seed, "mean": value} for m, (seed, value) in c.worst.items()}
     return out
 
 
@@ -93,24 +96,30 @@ def select_conditions(exp: Experiment, names: Sequence[str] | None) -> list[int]
 
 
 def run_trial(exp: Experiment, world_factory: WorldFactory, learner: str, seed: int, c: int,
-              t: int) -> TrialResult:
-    """Trial ``t`` of condition ``c``: the one place a trial's random generator is made."""
-    rng = np.random.default_rng([seed, c, t])
+              t: int, family: int | None = None) -> TrialResult:
+    """Trial ``t`` of condition ``c`` (of norm family ``family``, if given): the one place a trial's
+    random generator is made."""
+    rng = np.random.default_rng([seed, c, t] if family is None else [seed, family, c, t])
     return exp.trial(world_factory, exp.conditions[c], learner, rng)
 
 
-def _run_chunk(name: str, world_factory: WorldFactory, learner: str, seed: int,
-               pairs: Sequence[tuple[int, int]]) -> list[tuple[int, int, TrialResult, float]]:
+Unit = tuple[int, int, int]  # (world factory index, condition index, trial)
+
+
+def _run_chunk(name: str, factories: Sequence[WorldFactory], learner: str, seed: int,
+               units: Sequence[Unit]) -> list[tuple[Unit, TrialResult, float]]:
     exp = get_experiment(name)
     out = []
-    for c, t in pairs:
+    for unit in units:
+        f, c, t = unit
+        family = factories[f].seed if isinstance(factories[f], NormFamily) else None
         start = time.perf_counter()
-        result = run_trial(exp, world_factory, learner, seed, c, t)
-        out.append((c, t, result, time.perf_counter() - start))
+        result = run_trial(exp, factories[f], learner, seed, c, t, family)
+        out.append((unit, result, time.perf_counter() - start))
     return out
 
 
-def _chunks(pairs: list[tuple[int, int]], jobs: int) -> list[list[tuple[int, int]]]:
+def _chunks(pairs: list[Unit], jobs: int) -> list[list[Unit]]:
     size = max(1, math.ceil(len(pairs) / (jobs * CHUNKS_PER_JOB)))
     return [pairs[i : i + size] for i in range(0, len(pairs), size)]
 
@@ -136,50 +145,82 @@ def run_experiment(
     conditions: Sequence[str] | None = None,
     world: str = "paper blocks world",
     compare: bool = True,
+    families: Sequence[NormFamily] = (),
 ) -> ExperimentResult:
     """Run ``trials`` trials of every (selected) condition of experiment ``name``.
 
     ``world_factory(rng)`` draws a world with its ground truth; with ``jobs > 1`` it must be
     picklable (a module-level function or a picklable object). ``progress(done, total)`` is called
     as trials finish. ``compare``: attach the paper's published values (only meaningful on the
-    paper's blocks world with its norms).
+    paper's blocks world with its norms). With ``families``, the trials run on each norm family
+    instead of ``world_factory`` (trial ``t`` of condition ``c`` of family ``s`` draws from
+    ``[seed, s, c, t]``), and each condition reports the mean over families, with its 95% interval
+    over families, and the worst family (:func:`~ownctl.experiment.summary.summarise_families`).
     """
     exp = get_experiment(name)
     check_settings(trials, jobs, learner)
     chosen = select_conditions(exp, conditions)
-    pairs = [(c, t) for t in range(trials) for c in chosen]  # interleaved: chunks of equal cost
-    total = len(pairs)
+    factories: list[WorldFactory] = list(families) or [world_factory]
+    units = [(f, c, t) for f in range(len(factories)) for t in range(trials) for c in chosen]
+    total = len(units)
     start = time.perf_counter()
-    done: dict[tuple[int, int], tuple[TrialResult, float]] = {}
+    done: dict[Unit, tuple[TrialResult, float]] = {}
     if progress:
         progress(0, total)
     if jobs == 1:
-        for c, t, result, secs in _iterate_serial(exp.name, world_factory, learner, seed, pairs):
-            done[(c, t)] = (result, secs)
+        for unit, result, secs in _iterate_serial(exp.name, factories, learner, seed, units):
+            done[unit] = (result, secs)
             if progress:
                 progress(len(done), total)
     else:
         with ProcessPoolExecutor(max_workers=jobs) as pool:
-            futures = [pool.submit(_run_chunk, exp.name, world_factory, learner, seed, chunk)
-                       for chunk in _chunks(pairs, jobs)]
+            futures = [pool.submit(_run_chunk, exp.name, factories, learner, seed, chunk)
+                       for chunk in _chunks(units, jobs)]
             for fut in as_completed(futures):
-                for c, t, result, secs in fut.result():
-                    done[(c, t)] = (result, secs)
+                for unit, result, secs in fut.result():
+                    done[unit] = (result, secs)
                 if progress:
                     progress(len(done), total)
-    summaries = []
-    for c in chosen:
-        cond = exp.conditions[c]
-        results = [done[(c, t)][0] for t in range(trials)]
-        secs = sum(done[(c, t)][1] for t in range(trials))
-        refs = {k: v[cond.name] for k, v in exp.references.items() if cond.name in v and compare}
-        paper = exp.paper.get(cond.name, {}) if compare else {}
-        summaries.append(summarise(cond.name, c, results, exp.headline, paper, refs, secs))
+    per_factory = [[_condition(exp, c, [done[(f, c, t)] for t in range(trials)], compare) for c in chosen]
+                   for f in range(len(factories))]
+    extra: dict[str, Any] = {"paper_comparable": compare and not families}
+    if not families:
+        summaries = per_factory[0]
+    else:
+        summaries = [summarise_families([per_factory[f][k] for f in range(len(families))],
+                                        [fam.seed for fam in families])
+                     for k in range(len(chosen))]
+        extra["family_note"] = FAMILY_NOTE
+        extra["families"] = [_family_dict(fam, per_factory[f]) for f, fam in enumerate(families)]
+        world = f"{len(families)} norm families (seeds {families[0].seed}-{families[-1].seed})"
     return ExperimentResult(exp, trials, seed, jobs, learner, tuple(summaries),
-                            time.perf_counter() - start, world, {"paper_comparable": compare})
+                            time.perf_counter() - start, world, extra)
 
 
-def _iterate_serial(name: str, world_factory: WorldFactory, learner: str, seed: int,
-                    pairs: Sequence[tuple[int, int]]) -> Iterator[tuple[int, int, TrialResult, float]]:
-    for pair in pairs:
-        yield from _run_chunk(name, world_factory, learner, seed, [pair])
+def _condition(exp: Experiment, c: int, results: Sequence[tuple[TrialResult, float]],
+               compare: bool) -> ConditionSummary:
+    """One condition's trials aggregated, with the published values when ``compare``."""
+    cond = exp.conditions[c]
+    refs = {k: v[cond.name] for k, v in exp.references.items() if cond.name in v and compare}
+    paper = exp.paper.get(cond.name, {}) if compare else {}
+    return summarise(cond.name, c, [r for r, _ in results], exp.headline, paper, refs,
+                     sum(secs for _, secs in results))
+
+
+def _family_dict(family: NormFamily, conditions: Sequence[ConditionSummary]) -> dict[str, Any]:
+    """A family and its per-condition headline means (the JSON document's ``families``)."""
+    return {
+        "seed": family.seed,
+        "norms": list(family.norms),
+        "actions": list(family.actions),
+        "features": sorted(family.features()),
+        "rare": list(family.rare),
+        "home_agent": family.home_agent,
+        "conditions": {c.name: {"accuracy": c.accuracy.mean, "f1": c.f1.mean} for c in conditions},
+    }
+
+
+def _iterate_serial(name: str, factories: Sequence[WorldFactory], learner: str, seed: int,
+                    units: Sequence[Unit]) -> Iterator[tuple[Unit, TrialResult, float]]:
+    for unit in units:
+        yield from _run_chunk(name, factories, learner, seed, [unit])

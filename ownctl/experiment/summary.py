@@ -3,6 +3,10 @@
 Like the paper, a row's figure is the mean over trials, and a group's figure is the mean of its
 rows (equal to the mean over trials of the per-trial row averages, whose spread gives the
 interval). Conditions carry the paper's published values for display beside ours.
+
+Over norm families, each family's condition is first aggregated over its trials; a condition's
+figure is then the mean over families of those means, its interval the 95% t-interval over
+families, and the worst family the one with the lowest mean (:func:`summarise_families`).
 """
 
 from __future__ import annotations
@@ -13,10 +17,15 @@ from typing import Any
 
 import numpy as np
 
-from ownctl.experiment.metrics import ci95
+from ownctl.experiment.metrics import Scores, ci95
 from ownctl.experiment.result import TrialResult
 
 FIELDS = ("accuracy", "precision", "recall", "f1")
+FAMILY_NOTE = (
+    "families: a condition's figure is the mean over families of each family's mean over its trials "
+    "(ci95 over families); worst = the family with the lowest mean (its seed in brackets); every "
+    "action a family names is scored, with or without a norm"
+)
 
 
 @dataclass(frozen=True)
@@ -81,6 +90,7 @@ class ConditionSummary:
     paper: Mapping[str, Any] = field(default_factory=dict)
     references: Mapping[str, Mapping[str, Any]] = field(default_factory=dict)
     seconds: float = 0.0  # summed trial time (CPU of the workers)
+    worst: Mapping[str, tuple[int, float]] = field(default_factory=dict)  # metric -> (family, mean)
 
     @property
     def accuracy(self) -> Cell:
@@ -112,3 +122,27 @@ def summarise(name: str, index: int, trials: Sequence[TrialResult], headline: st
     count_names = list(trials[0].counts) if trials else []
     counts = {c: Cell.of([t.counts[c] for t in trials]) for c in count_names}
     return ConditionSummary(name, index, len(trials), groups, counts, headline, paper, references, seconds)
+
+
+def family_means(summary: ConditionSummary) -> TrialResult:
+    """One family's condition as a single result: each row's scores and each count averaged over
+    its trials."""
+    groups = {g: {r.name: Scores(*(r[m].mean for m in FIELDS)) for r in grp.rows}
+              for g, grp in summary.groups.items()}
+    return TrialResult(groups, {k: v.mean for k, v in summary.counts.items()})
+
+
+def summarise_families(per_family: Sequence[ConditionSummary], seeds: Sequence[int]) -> ConditionSummary:
+    """One condition over norm families: the mean over families (rows and counts) with 95% intervals
+    over families, and the worst family by headline accuracy and by headline F1 (lowest mean; the
+    first family on ties)."""
+    first = per_family[0]
+    summary = summarise(first.name, first.index, [family_means(s) for s in per_family], first.headline,
+                        {}, {}, sum(s.seconds for s in per_family))
+    worst: dict[str, tuple[int, float]] = {}
+    for metric in ("accuracy", "f1"):
+        values = [getattr(s, metric).mean for s in per_family]
+        k = int(np.argmin(values))
+        worst[metric] = (int(seeds[k]), float(values[k]))
+    return ConditionSummary(summary.name, summary.index, summary.trials, summary.groups, summary.counts,
+                            summary.headline, {}, {}, summary.seconds, worst)

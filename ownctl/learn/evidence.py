@@ -9,6 +9,7 @@ weighted sum, and many candidate rules are scored at once.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 
@@ -32,17 +33,23 @@ class Vocabulary:
 
     def atoms(self) -> list[Literal]:
         """Positive literals in canonical order, ``any`` first for each predicate."""
-        out: list[Literal] = []
-        for pred, args in (
-            ("ownedBy", self.agents),
-            ("isColored", self.colors),
-            ("inArea", self.areas),
-            ("inCategory", self.categories),
-        ):
-            if args:
-                out.append(Literal(pred, ANY))
-                out.extend(Literal(pred, a) for a in sorted(set(args)))
-        return out
+        return list(_atoms(self))
+
+
+@functools.lru_cache(maxsize=256)
+def _atoms(vocab: Vocabulary) -> tuple[Literal, ...]:
+    """:meth:`Vocabulary.atoms`, made once per vocabulary."""
+    out: list[Literal] = []
+    for pred, args in (
+        ("ownedBy", vocab.agents),
+        ("isColored", vocab.colors),
+        ("inArea", vocab.areas),
+        ("inCategory", vocab.categories),
+    ):
+        if args:
+            out.append(Literal(pred, ANY))
+            out.extend(Literal(pred, a) for a in sorted(set(args)))
+    return tuple(out)
 
 
 class Evidence:
@@ -60,6 +67,17 @@ class Evidence:
         self._cache: dict[Literal, np.ndarray] = {}
         self._rules: dict[Rule, np.ndarray] = {}
         self._stacks: dict[tuple[Literal, ...], np.ndarray] = {}
+
+    def reordered(self, order: Sequence[int]) -> Evidence:
+        """The same examples in the order ``order`` (a permutation), sharing the enumerated worlds."""
+        out = object.__new__(Evidence)
+        idx = np.asarray(order, dtype=int)
+        out.frame = self.frame.take(idx)
+        out.t = self.t[idx]
+        w = self.worlds
+        out.worlds = type(w)(w.atoms, w.bits, w.weights[:, idx], w.probs[:, idx])
+        out._cache, out._rules, out._stacks = {}, {}, {}
+        return out
 
     @property
     def n(self) -> int:

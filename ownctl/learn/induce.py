@@ -7,34 +7,36 @@
 * ``cover_rule``: a given forbid norm -> specialise it against the allowed examples (Gricean), add.
 * ``uncover_rule``: a given allow norm -> specialise it against the forbidden examples, subtract it.
 
-Two scorings share this structure (``LearnConfig.learner``):
+Two learners share the entry points (``LearnConfig.learner``):
 
 * ``paper``: the original system's counts and thresholds (crisp false-positive counts with one error
-  tolerated for examples, soft false/true-positive values for given rules);
-* ``ours``: the change in negative log-likelihood of all stored permissions under a label-noise model
-  (the instructor says what the rules imply with probability 1 - noise), plus a penalty per literal.
-  Uncertain ownership then counts as evidence in proportion to its probability instead of being cut
-  at 0.5, which is what makes noisy-ownership learning work.
+  tolerated for examples, soft false/true-positive values for given rules), with the conflict gate;
+* ``ours``: after every permission, the most probable rule set of all stored permissions under the
+  stated model of :mod:`ownctl.learn.model` (uncertain ownership counts in proportion to its
+  probability), found by :mod:`ownctl.learn.exact`; given norms go through cover/uncover rule.
 
 Everything is deterministic: canonical literal order, stable sorts, ordered example sweeps.
 """
 
 from __future__ import annotations
 
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ownctl.config import LearnConfig
+from ownctl.learn import exact
 from ownctl.learn.algebra import merge_rule, rule_diff, specialising
-from ownctl.learn.evidence import Evidence, Vocabulary
-from ownctl.learn.search import rule_search, sizes
+from ownctl.learn.evidence import MAX_NAMED_AGENTS, Evidence, Vocabulary
+from ownctl.learn.model import Model, model_for
+from ownctl.learn.search import rule_search
 from ownctl.logic.rules import ANY, Norm, Rule
 
-LABEL_NOISE = 0.003  # the instructor is almost always right about permissions
-LITERAL_PENALTY = 0.7  # nats per literal in the "ours" score
-RULE_PENALTY = 1.5  # nats per rule: a new rule must explain more than one uncertain example
+MAX_RULES = 5  # ours: rules re-induction may add to the given ones
+TRACES = 4096  # ours: re-induction traces kept for certification (a memo: results never depend on it)
+_traces: OrderedDict[tuple, exact.Choice] = OrderedDict()
 
 
 @dataclass(frozen=True)
@@ -47,22 +49,20 @@ class Outcome:
     given: tuple[Rule, ...] = ()  # after a norm: the rules that stand for what instructors said
 
 
-def nll(ev: Evidence, q: np.ndarray) -> np.ndarray:
-    """Negative log-likelihood of the permissions given forbid probabilities q (..., n) -> (...)."""
-    p = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * q
-    return -(ev.t * np.log(p) + (1 - ev.t) * np.log(1 - p)).sum(axis=-1)
-
 
 class Inducer:
     """The four entry points over one action's stored examples."""
 
     def __init__(self, action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig) -> None:
         self.action, self.ev, self.cfg = action, ev, cfg
-        # agents the examples' worlds leave out (no ownership among the examples, or beyond the
-        # enumeration limit) cannot be told apart there, so rules do not name them
-        self.atoms = [a for a in vocab.atoms()
-                      if a.pred != "ownedBy" or a.arg == ANY or a.arg in ev.worlds.atoms]
         self.ours = cfg.learner == "ours"
+        # agents the examples' worlds leave out (no ownership among the examples, or beyond the
+        # enumeration limit) cannot be told apart there: the paper's search does not name them;
+        # ours searches the whole vocabulary (such literals cover nothing, or what their rule
+        # covers, and are never chosen), so its hypothesis space does not depend on the examples
+        self.atoms = [a for a in vocab.atoms()
+                      if self.ours or a.pred != "ownedBy" or a.arg == ANY or a.arg in ev.worlds.atoms]
+        self.model: Model = model_for(vocab.atoms(), cfg.max_conditions)
 
     # -- helpers -------------------------------------------------------------------------------
     def _covers(self, rule: Rule) -> np.ndarray:
@@ -76,34 +76,20 @@ class Inducer:
         return rule_search(self.ev, init, self.atoms, score, threshold, filters, self.cfg.beam,
                            self.cfg.max_conditions, stop_at_success=not self.ours, exclude=exclude)
 
-    def _delta_add(self, rules: Sequence[Rule]):  # type: ignore[no-untyped-def]
-        """Ours: score of adding each candidate to ``rules`` (lower is better, < 0 improves)."""
-        base_truth = self.ev.union(rules)
-        base = float(nll(self.ev, self.ev.prob(base_truth)))
-
-        def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
-            q = self.ev.prob(truths | base_truth[None])
-            size = sizes(cands) + 1
-            return nll(self.ev, q) - base + LITERAL_PENALTY * (size - 1) + RULE_PENALTY
-
-        return score
-
-    # -- Algorithm 1 -------------------------------------------------------------------------
+    # -- Algorithm 1 (paper) -----------------------------------------------------------------
     def cover_example(self, rules: list[Rule], i: int) -> list[Rule]:
         """Add a rule covering forbid example ``i`` (unless no acceptable rule exists)."""
         neg = ~self.ev.positives
         covers_new = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
-        if self.ours:
-            result = self._search(Rule(self.action), self._delta_add(rules), -1e-9, (covers_new,), rules)
-        else:
-            def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
-                return (self.ev.prob(truths)[:, neg] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
 
-            thr = max(1.0, self.cfg.example_tolerance * neg.sum())
-            result = self._search(Rule(self.action), score, thr, (covers_new,), rules)
+        def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
+            return (self.ev.prob(truths)[:, neg] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
+
+        thr = max(1.0, self.cfg.example_tolerance * neg.sum())
+        result = self._search(Rule(self.action), score, thr, (covers_new,), rules)
         return self._merge(rules, result.rule) if result.success else rules
 
-    # -- Algorithm 2 -------------------------------------------------------------------------
+    # -- Algorithm 2 (paper) -----------------------------------------------------------------
     def uncover_example(self, rules: list[Rule], i: int) -> list[Rule]:
         """Specialise every rule that covers allow example ``i`` and subtract the specialisation."""
         current = list(rules)
@@ -111,28 +97,14 @@ class Inducer:
             if r not in current:
                 continue
             keeps_neg = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
-            if self.ours:
-                others = [x for x in current if x != r]
-                rest = self.ev.union(others)
-                r_truth = self.ev.truth(r)
-                base = float(nll(self.ev, self.ev.prob(self.ev.union(current))))
+            pos = self.ev.positives & self._covers(r)
 
-                def score(truths: np.ndarray, cands: Sequence[Rule], r=r, rest=rest, r_truth=r_truth,
-                          base=base) -> np.ndarray:
-                    q = self.ev.prob(rest[None] | (r_truth[None] & ~truths))
-                    extra = sizes(cands) - len(r.literals)
-                    return nll(self.ev, q) - base + LITERAL_PENALTY * extra
+            def score(truths: np.ndarray, cands: Sequence[Rule], pos=pos) -> np.ndarray:
+                covered = self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold
+                return covered.sum(axis=1).astype(float)
 
-                result = self._search(r, score, -1e-9, (keeps_neg,))
-            else:
-                pos = self.ev.positives & self._covers(r)
-
-                def score(truths: np.ndarray, cands: Sequence[Rule], pos=pos) -> np.ndarray:
-                    covered = self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold
-                    return covered.sum(axis=1).astype(float)
-
-                thr = max(1.0, self.cfg.example_tolerance * pos.sum())
-                result = self._search(r, score, thr, (keeps_neg,))
+            thr = max(1.0, self.cfg.example_tolerance * pos.sum())
+            result = self._search(r, score, thr, (keeps_neg,))
             if result.success:
                 current.remove(r)
                 for piece in rule_diff(r, result.rule):
@@ -140,29 +112,40 @@ class Inducer:
         return current
 
     # -- re-induction (ours) ------------------------------------------------------------------
-    def reinduce(self, given: Sequence[Rule], allows: Sequence[Rule], max_rules: int = 4) -> list[Rule]:
+    def reinduce(self, given: Sequence[Rule], allows: Sequence[Rule], trace: exact.Choice | None = None
+                 ) -> list[Rule]:
         """Ours: the most probable rule set for all stored examples, kept around the given rules.
 
-        Greedy covering from the given rules: repeatedly add the rule (beam search from the empty
-        rule) that most lowers the penalised negative log-likelihood, then drop learned rules whose
-        removal does not cost more than their penalty, then subtract the allow norms. The result
-        depends only on the examples, not on the order they arrived in.
+        Greedy, with an exact search for each rule (:func:`ownctl.learn.exact.reinduce`), on the
+        examples in canonical order, then the allow norms are subtracted: the result depends only on
+        the set of examples, not on the order they arrived in. ``trace``: a certified trace of this
+        very computation (:func:`ownctl.learn.exact.certify_greedy`), used instead of searching again.
         """
-        current = list(given)
-        for _ in range(max_rules):
-            result = self._search(Rule(self.action), self._delta_add(current), -1e-9, (), current)
-            if not result.success:
-                break
-            merged = self._merge(current, result.rule)
-            current = [*(g for g in given if g not in merged), *merged]  # what was said stays
-        for r in [r for r in current if r not in given]:
-            rest = [x for x in current if x != r]
-            gain = float(nll(self.ev, self.ev.q(rest)) - nll(self.ev, self.ev.q(current)))
-            if gain <= LITERAL_PENALTY * len(r.literals) + RULE_PENALTY:
-                current = rest
+        if trace is None:
+            canon, _, _ = exact.canonical_order(self.ev)
+            trace = exact.reinduce(canon, self.action, given, self.atoms, self.model,
+                                   self.cfg.max_conditions, MAX_RULES)
+        current = list(trace.result)
         for allow in allows:
             current = subtract(current, allow, self._merge)
         return current
+
+    def traced(self, given: Sequence[Rule], new: int) -> exact.Choice:
+        """The re-induction trace for the stored examples: certified from the trace of the same
+        examples without example ``new`` when one is known and the certificate holds, else computed."""
+        canon, order, digests = exact.canonical_order(self.ev)
+        truncated = self.ev.worlds.atoms if len(self.ev.frame.agents) > MAX_NAMED_AGENTS else None
+        key = (self.action, tuple(given), tuple(self.atoms), truncated, self.model, self.cfg.max_conditions,
+               MAX_RULES)
+        full = (key, tuple(digests))
+        rest = (key, tuple(d for k, d in enumerate(digests) if order[k] != new))
+        trace = exact.reinduce(canon, self.action, given, self.atoms, self.model, self.cfg.max_conditions,
+                               MAX_RULES, _traces.get(rest), order.index(new))
+        _traces[full] = trace
+        _traces.move_to_end(full)
+        while len(_traces) > TRACES:
+            _traces.popitem(last=False)
+        return trace
 
     # -- Algorithms 3 and 4 ------------------------------------------------------------------
     def cover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
@@ -209,41 +192,33 @@ def subtract(rules: Sequence[Rule], allow: Rule, merge=None) -> list[Rule]:  # t
     return out
 
 
-def agreement(ev: Evidence, rules: Sequence[Rule], i: int) -> float:
-    """P(the rules agree with permission ``i``) under the prior ownership of its object."""
-    q = float(ev.q(rules)[i])
-    return float(ev.t[i] * q + (1.0 - ev.t[i]) * (1.0 - q))
-
-
-EXPLAINED = 0.5  # ours: a permission the rules agree with at least this likely is left to inference
-UNEXPLAINABLE = 0.01  # ours: a permission the rules agree with less likely than this is learned from
-
-
 def learn_permission(
     action: str, rules: Sequence[Rule], allows: Sequence[Rule], ev: Evidence, new: int,
     vocab: Vocabulary, cfg: LearnConfig, given: Sequence[Rule] = (),
 ) -> Outcome:
-    """The conflict gate, then induction: accommodate example ``new``, then every misclassified one.
+    """Induction after permission ``new`` was stored with the others in ``ev``.
 
-    While the rules agree with at least ``cfg.accuracy_gate`` of the stored permissions (soft
-    accuracy), nothing is learned: the permission is only stored and used for inference. The
-    ``ours`` learner refines the gate with the new permission's own agreement: a permission the rules
-    explain plausibly (by some likely ownership) is left to inference even when accuracy is low, and
-    one they cannot explain is learned from even when accuracy is high; it then re-induces the whole
-    rule set around the given norms (:meth:`Inducer.reinduce`).
+    ``paper``: the conflict gate, then cover/uncover example for ``new`` and then every misclassified
+    example, while the rules agree with less than ``cfg.accuracy_gate`` of the stored permissions
+    (soft accuracy); otherwise the permission is only stored and used for inference.
+
+    ``ours``: the most probable rule set for all stored permissions around the given rules
+    (:meth:`Inducer.reinduce`), after every permission; a permission the rules explain by a likely
+    ownership changes nothing (the stated model weighs it), and the result depends only on the set of
+    permissions, not on their order. Most permissions are settled by certifying the previous
+    re-induction (:func:`ownctl.learn.exact.certify_greedy`) instead of searching again. ``induced`` says
+    whether the rules changed.
     """
     accuracy = ev.soft_accuracy(rules)
-    ours = cfg.learner == "ours"
-    if ours:
-        agree = agreement(ev, rules, new)
-        induce = agree < UNEXPLAINABLE or (accuracy < cfg.accuracy_gate and agree < EXPLAINED)
-    else:
-        induce = accuracy < cfg.accuracy_gate
-    if not induce:
+    if cfg.learner == "ours":
+        if ev.n == 0:
+            return Outcome(tuple(rules), False, accuracy)
+        ind = Inducer(action, ev, vocab, cfg)
+        learned = tuple(ind.reinduce(given, allows, ind.traced(given, new)))
+        return Outcome(learned, learned != tuple(rules), accuracy)
+    if accuracy >= cfg.accuracy_gate:
         return Outcome(tuple(rules), False, accuracy)
     ind = Inducer(action, ev, vocab, cfg)
-    if ours:
-        return Outcome(tuple(ind.reinduce(given, allows)), True, accuracy)
     current = list(rules)
     for j in [new, *(j for j in range(ev.n) if j != new)]:
         q = float(ev.q(current)[j])
@@ -251,8 +226,6 @@ def learn_permission(
             current = ind.cover_example(current, j)
         elif ev.t[j] < cfg.cover_threshold and q >= cfg.cover_threshold:
             current = ind.uncover_example(current, j)
-    for allow in allows if ind.ours else ():
-        current = subtract(current, allow, ind._merge)
     return Outcome(tuple(current), True, accuracy)
 
 

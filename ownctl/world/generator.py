@@ -44,11 +44,14 @@ def paper_blocks_world(
     norms: tuple[str, ...] = PAPER_NORMS,
     prefix: str = "block",
     places: np.random.Generator | None = None,
+    home_cluster: int = 0,
 ) -> World:
     """A fresh random blocks world with its ground truth (true owners and true norms).
 
     ``places`` draws where the agents sit (their sectors' cluster centres); by default ``rng`` does.
-    A new layout of the same world draws new objects around the same places.
+    A new layout of the same world draws new objects around the same places. ``home_cluster``
+    names the cluster that sits in the home area: 0, the unowned objects (the paper's layout), or
+    ``j`` in 1..k, agent ``j``'s objects, the unowned ones taking that agent's place (same draws).
     """
     k = len(agents)
     if k < 1 or n_objects < 0:
@@ -60,6 +63,9 @@ def paper_blocks_world(
         radius = where.uniform(*AVATAR_RANGE)
         angle = where.uniform(i, i + 1) * 2 * np.pi / k
         centres.append(radius * np.array([np.cos(angle), np.sin(angle)]))
+    if not 0 <= home_cluster <= k:
+        raise BadValue(f"home_cluster must be in [0, {k}] (0: the unowned objects), got {home_cluster}")
+    centres[0], centres[home_cluster] = centres[home_cluster], centres[0]
     objects: list[ObjectSpec] = []
     owners: dict[str, dict[str, float]] = {}
     for i in range(n_objects):

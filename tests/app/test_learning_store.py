@@ -358,11 +358,12 @@ def test_an_overwritten_permission_is_the_new_example(ctx: AppContext) -> None:
     instruct.add_norm(ctx, "forbid trash if isColored red")
     for i, c in enumerate(colours):
         instruct.add_permission(ctx, "trash", f"o{i}", 1.0 if c == "red" else 0.0)
-    # o1 (blue) was allowed first; now it is forbidden, which no ownership can explain under
-    # "forbid trash if isColored red". Accuracy 9/10 keeps the gate, except for such an example.
-    done = instruct.add_permission(ctx, "trash", "o1", 1.0)
+    # o9 (the green one) was allowed first; now it is forbidden, which no ownership can explain
+    # under "forbid trash if isColored red": the overwritten permission is the example learned from
+    done = instruct.add_permission(ctx, "trash", "o9", 1.0)
     assert done.data["accuracy"] == pytest.approx(0.9)
-    assert done.data["induced"] is True
+    assert done.data["induced"] is True and "forbid trash if isColored red" in done.data["rules"]
+    assert len(done.data["rules"]) == 2  # and a rule for the green one
 
 
 def test_the_mind_learns_from_an_overwritten_unexplainable_permission() -> None:
@@ -376,8 +377,10 @@ def test_the_mind_learns_from_an_overwritten_unexplainable_permission() -> None:
     mind.instruct(parse_norm("forbid trash if isColored red"))
     for i, c in enumerate(colours):
         mind.permit("trash", i, 1.0 if c == "red" else 0.0)
-    out = mind.permit("trash", 1, 1.0)
+    out = mind.permit("trash", 9, 1.0)
     assert out is not None and out.accuracy == pytest.approx(0.9) and out.induced
+    assert parse_norm("forbid trash if isColored red").rule in out.rules and len(out.rules) == 2
+    assert mind.decide("trash", 9, ["trash"])[0] and not mind.decide("trash", 3, ["trash"])[0]
 
 
 def test_an_agent_without_claims_has_the_calibrated_prior_as_in_the_mind(ctx: AppContext) -> None:
