@@ -64,7 +64,7 @@ def finger_rects(center: Vec, closing_yaw: float, opening: float, bottom: float,
     mid = opening + baxter.FINGER_THICK / 2
     half = (baxter.FINGER_THICK / 2, baxter.FINGER_WIDTH)
     return [
-        Rect(tuple(np.asarray(center) + sign * mid * axis), closing_yaw, half, bottom, top)  # type: ignore[arg-type]
+        Rect(tuple(np.asarray(center) + sign * mid * axis), closing_yaw, half, bottom, top)
         for sign in (1.0, -1.0)
     ]
 

@@ -212,8 +212,10 @@ class OwnctlGroup(TyperGroup):
     step) and exits with it otherwise.
     """
 
-    def main(self, args: Sequence[str] | None = None, prog_name: str | None = None,
-             complete_var: str | None = None, standalone_mode: bool = True, **extra: Any) -> Any:
+    def main(  # type: ignore[override]  # click declares main with overloads on standalone_mode
+        self, args: Sequence[str] | None = None, prog_name: str | None = None,
+        complete_var: str | None = None, standalone_mode: bool = True, **extra: Any,
+    ) -> Any:
         state = extra.get("obj")
         prefix = state.prefix if isinstance(state, State) else ""
         try:

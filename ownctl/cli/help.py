@@ -40,8 +40,8 @@ class OwnctlCommand(TyperCommand):
 
     def format_options(self, ctx: Any, formatter: Any) -> None:
         """An Arguments section (metavar, help) and an Options section (flags, metavar, help)."""
-        arguments = [(metavar(p), p.help or "") for p in self.get_params(ctx)
-                     if p.param_type_name == "argument" and not p.hidden]
+        arguments = [(metavar(p), getattr(p, "help", None) or "") for p in self.get_params(ctx)
+                     if p.param_type_name == "argument" and not getattr(p, "hidden", False)]
         options = [record for p in self.get_params(ctx)
                    if p.param_type_name == "option" and (record := p.get_help_record(ctx)) is not None]
         if arguments:

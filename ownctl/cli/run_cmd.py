@@ -62,14 +62,16 @@ def run(
             grid.add_row(record.name, MARKS.get(record.outcome, record.outcome), record.reason,
                          "yes" if record.mistake else "")
 
-    kwargs = dict(instructor=instructor, physics=physics, seed=seed, layout_seed=layout_seed, arm=arm,
-                  grasp=grasp, render=render, on_step=on_step)
+    def play() -> runner.RunReport:
+        return runner.run(app_ctx(ctx), task, instructor=instructor, physics=physics, seed=seed,
+                          layout_seed=layout_seed, arm=arm, grasp=grasp, render=render, on_step=on_step)
+
     if shown:
         with Live(grid, console=console, refresh_per_second=8, transient=False):
-            result = runner.run(app_ctx(ctx), task, **kwargs)
+            result = play()
         console.print()
     else:
-        result = runner.run(app_ctx(ctx), task, **kwargs)
+        result = play()
     data = result.as_json()
 
     def human() -> None:

@@ -112,7 +112,8 @@ def _run_chunk(name: str, factories: Sequence[WorldFactory], learner: str, seed:
     out = []
     for unit in units:
         f, c, t = unit
-        family = factories[f].seed if isinstance(factories[f], NormFamily) else None
+        factory = factories[f]
+        family = factory.seed if isinstance(factory, NormFamily) else None
         start = time.perf_counter()
         result = run_trial(exp, factories[f], learner, seed, c, t, family)
         out.append((unit, result, time.perf_counter() - start))

@@ -110,7 +110,7 @@ def _intent(rule: GrammarRule, instructions: tuple[Instruction, ...]) -> str:
 def _variants(text: str) -> list[tuple[str, float | None, str]]:
     """The text, then without an opening discourse marker, then without a hedge at either end:
     (text, confidence cap or None, what was dropped)."""
-    out = [(text, None, "")]
+    out: list[tuple[str, float | None, str]] = [(text, None, "")]
     bare = text
     if (m := _DISCOURSE.match(text)) and m.end() < len(text):
         bare = text[m.end():]

@@ -126,7 +126,8 @@ class Evidence:
 
     def prob(self, truth: np.ndarray) -> np.ndarray:
         """Exact probability per example of a truth table (..., W, n) -> (..., n)."""
-        return np.clip((truth * self.worlds.weights).sum(axis=-2), 0.0, 1.0)
+        out: np.ndarray = np.clip((truth * self.worlds.weights).sum(axis=-2), 0.0, 1.0)
+        return out
 
     def q(self, rules: Sequence[Rule]) -> np.ndarray:
         """P(forbidden) per example under a rule set."""

@@ -77,7 +77,8 @@ def _pair_table(ev: Evidence, lits: tuple[Literal, ...], wi: np.ndarray, ni: np.
             row = atom[0, ni] if atom.shape[0] == 1 else atom[wi, 0] if atom.shape[1] == 1 else atom[wi, ni]
             rows += [row, ~row]
         got = cache[lits] = np.array(rows, dtype=bool).reshape(len(lits), len(wi))
-    return got
+    out: np.ndarray = got
+    return out
 
 
 def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[Literal], model: Model,
@@ -106,9 +107,11 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     def nll(q: np.ndarray) -> np.ndarray:
         """Weighted likelihood terms summed over examples, for each row of forbid probabilities."""
         if sign is None:
-            return (w * model.nll_terms(t, q)).sum(axis=-1)
+            total: np.ndarray = (w * model.nll_terms(t, q)).sum(axis=-1)
+            return total
         p = model.noise + (1 - 2 * model.noise) * q
-        return -(w * np.log(np.where(sign > 0, p, 1.0 - p))).sum(axis=-1)
+        signed: np.ndarray = -(w * np.log(np.where(sign > 0, p, 1.0 - p))).sum(axis=-1)
+        return signed
 
     def forbid(truth: np.ndarray) -> np.ndarray:
         if not len(ni):
@@ -349,8 +352,9 @@ def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[L
             runs.append(None)
             continue
         known = None
-        if earlier is not None and new is not None and earlier.runs[k] is not None:
-            proved = certify_greedy(earlier.runs[k], ev, new, model)
+        previous = earlier.runs[k] if earlier is not None else None
+        if previous is not None and new is not None:
+            proved = certify_greedy(previous, ev, new, model)
             if isinstance(proved, Trace):
                 run = proved
             else:

@@ -23,6 +23,7 @@ from __future__ import annotations
 from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -36,7 +37,7 @@ from ownctl.logic.rules import ANY, Norm, Rule
 
 MAX_RULES = 5  # ours: rules re-induction may add to the given ones
 TRACES = 4096  # ours: re-induction traces kept for certification (a memo: results never depend on it)
-_traces: OrderedDict[tuple, exact.Choice] = OrderedDict()
+_traces: OrderedDict[tuple[Any, ...], exact.Choice] = OrderedDict()
 
 
 @dataclass(frozen=True)
@@ -83,7 +84,8 @@ class Inducer:
         covers_new = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
 
         def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
-            return (self.ev.prob(truths)[:, neg] >= self.cfg.cover_threshold).sum(axis=1).astype(float)
+            counts: np.ndarray = (self.ev.prob(truths)[:, neg] >= self.cfg.cover_threshold).sum(axis=1)
+            return counts.astype(float)
 
         thr = max(1.0, self.cfg.example_tolerance * neg.sum())
         result = self._search(Rule(self.action), score, thr, (covers_new,), rules)
@@ -99,9 +101,10 @@ class Inducer:
             keeps_neg = lambda tr, c: self.ev.prob(tr)[:, i] >= self.cfg.cover_threshold  # noqa: E731
             pos = self.ev.positives & self._covers(r)
 
-            def score(truths: np.ndarray, cands: Sequence[Rule], pos=pos) -> np.ndarray:
-                covered = self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold
-                return covered.sum(axis=1).astype(float)
+            def score(truths: np.ndarray, cands: Sequence[Rule], pos: np.ndarray = pos) -> np.ndarray:
+                covered: np.ndarray = self.ev.prob(truths)[:, pos] >= self.cfg.cover_threshold
+                counts: np.ndarray = covered.sum(axis=1).astype(float)
+                return counts
 
             thr = max(1.0, self.cfg.example_tolerance * pos.sum())
             result = self._search(r, score, thr, (keeps_neg,))
@@ -155,7 +158,8 @@ class Inducer:
         neg = ~self.ev.positives
 
         def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
-            return np.maximum(self.ev.prob(truths)[:, neg] - self.ev.t[neg], 0).sum(axis=1)
+            excess: np.ndarray = np.maximum(self.ev.prob(truths)[:, neg] - self.ev.t[neg], 0).sum(axis=1)
+            return excess
 
         threshold = self.cfg.rule_tolerance * neg.sum()
         result = rule_search(self.ev, given, self.atoms, score, threshold, (), self.cfg.beam,
@@ -170,7 +174,8 @@ class Inducer:
         pos = self.ev.positives
 
         def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
-            return np.minimum(self.ev.prob(truths)[:, pos], self.ev.t[pos]).sum(axis=1)
+            kept: np.ndarray = np.minimum(self.ev.prob(truths)[:, pos], self.ev.t[pos]).sum(axis=1)
+            return kept
 
         result = self._search(given, score, self.cfg.rule_tolerance * pos.sum())
         if not result.success and not self.ours:

@@ -64,7 +64,8 @@ class Model:
         """Per-example ``-log P(t_i | q_i)`` (broadcast over leading axes of ``q``)."""
         p = self.noise + (1 - 2 * self.noise) * q
         with np.errstate(divide="ignore"):
-            return -(t * np.log(p) + (1 - t) * np.log1p(-p))
+            out: np.ndarray = -(t * np.log(p) + (1 - t) * np.log1p(-p))
+        return out
 
     def best_q(self, t: np.ndarray) -> np.ndarray:
         """The forbid probability that explains each permission best (its nll is convex in q)."""
@@ -95,7 +96,7 @@ def literal_list(atoms: Sequence[Literal]) -> tuple[Literal, ...]:
 def extensions(ok: np.ndarray, lits: tuple[int, ...], start: int) -> np.ndarray:
     """Indices of the literals that extend the rule ``lits`` canonically: literals of atoms from
     ``start`` on, compatible with every literal of the rule."""
-    allowed = ok[list(lits)].all(axis=0) if lits else np.ones(len(ok), dtype=bool)
+    allowed: np.ndarray = np.asarray(ok[list(lits)].all(axis=0)) if lits else np.ones(len(ok), dtype=bool)
     allowed[: 2 * start] = False
     return np.flatnonzero(allowed)
 

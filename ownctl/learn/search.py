@@ -47,7 +47,7 @@ class Candidates(Sequence[Rule]):
     def __len__(self) -> int:
         return len(self.pairs)
 
-    def __getitem__(self, k):  # type: ignore[no-untyped-def, override]
+    def __getitem__(self, k):  # type: ignore[no-untyped-def]
         if isinstance(k, slice):
             return [self[i] for i in range(*k.indices(len(self)))]
         parent, lit = self.pairs[k]

@@ -24,7 +24,7 @@ from sqlalchemy.exc import ArgumentError, DBAPIError, NoSuchModuleError
 from sqlalchemy.orm import Session
 from sqlalchemy.pool import StaticPool
 
-from ownctl.errors import BadValue, StoreBusy, StoreError
+from ownctl.errors import BadValue, OwnctlError, StoreBusy, StoreError
 from ownctl.store import migrate
 from ownctl.store.models import APPLICATION
 from ownctl.store.repo import Tx
@@ -123,7 +123,7 @@ def _make_engine(location: Location, foreign_keys: bool = True) -> Engine:
     return engine
 
 
-def database_error(exc: DBAPIError, location: Location) -> StoreError:
+def database_error(exc: DBAPIError, location: Location) -> OwnctlError:
     """The one-line user error for a database failure a user can cause; StoreBusy when trying
     again may succeed (a busy or locked store, a deadlock or serialisation victim)."""
     orig = exc.orig
