@@ -57,6 +57,7 @@ class Settings:
     learn: LearnConfig = field(default_factory=LearnConfig)
     predict: PredictConfig = field(default_factory=PredictConfig)
     infer: InferConfig = field(default_factory=InferConfig)
+    decide_rules: str = "map"  # decisions on the most probable rule set, or marginalised ("posterior")
 
     def threshold_for(self, action: str) -> float:
         """The obedience threshold of ``action`` (per-action override, else the default)."""

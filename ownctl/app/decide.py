@@ -23,6 +23,7 @@ from ownctl.app.beliefs import belief_sources
 from ownctl.app.context import AppContext, use_case
 from ownctl.app.mindstore import load
 from ownctl.logic.prob import p_forbidden
+from ownctl.logic.rules import parse_rule
 from ownctl.logic.vocab import ACTIONS
 from ownctl.logic.vocab import action as check_action
 from ownctl.mind import Mind
@@ -41,15 +42,16 @@ class CheckReport:
         return bool(self.data["decision"] == "forbidden")
 
 
-def _step(mind: Mind, step: str, permission_id: int | None, rule_ids: dict[str, int]) -> dict[str, Any]:
-    """One step of the decision on the Mind's (only) object, as the report shows it."""
-    frame = mind.frame()
-    given = mind.permission(step, 0)
+def _step(mind: Mind, i: int, step: str, permission_id: int | None,
+          rule_ids: dict[str, int]) -> dict[str, Any]:
+    """One step of the decision on the Mind's object ``i``, as the report shows it."""
+    frame = mind.frame().take([i])
+    given = mind.permission(step, i)
     rules = mind.rules[step]
     per_rule = [{"id": rule_ids.get(r.text()), "text": r.text(), "p": float(p_forbidden([r], frame)[0])}
                 for r in rules]
-    p_rules = float(mind.p_forbidden(step)[0])
-    forbidden = mind.forbidden(step, 0)
+    p_rules = mind.p_rules(step, i)
+    forbidden = mind.forbidden(step, i)
     if given is not None:
         decided_by, p = "permission", float(given.value)
     elif rules:
@@ -66,7 +68,23 @@ def _step(mind: Mind, step: str, permission_id: int | None, rule_ids: dict[str, 
         "permission_id": None if given is None else permission_id,
         "p_rules": p_rules,
         "rules": per_rule,
+        "rule_support": _support(mind, i, step, decided_by, per_rule),
     }
+
+
+#: Below this support a decision is said to rest on an uncertain rule.
+SURE = 0.9
+
+
+def _support(mind: Mind, i: int, step: str, decided_by: str, per_rule: list[dict[str, Any]]) -> float | None:
+    """When a learned rule decides: how sure the posterior over rule sets is of what it says on object
+    ``i`` (None when no rule decides, a stated norm decides, or the step has no examples)."""
+    if decided_by != "rules" or not per_rule or not mind.perms[step]:
+        return None
+    rule = parse_rule(max(per_rule, key=lambda r: r["p"])["text"])
+    if rule in mind.given(step):
+        return None
+    return mind.rule_support(step, rule, i)
 
 
 def _reason(name: str, obj: str, step: dict[str, Any]) -> str:
@@ -79,8 +97,18 @@ def _reason(name: str, obj: str, step: dict[str, Any]) -> str:
         return (
             f"the rules of {step['action']} forbid it with p={step['p_forbidden']:.3g} {op} "
             f"{step['threshold']:g} (strongest: rule {top['id']} '{top['text']}', p={top['p']:.3g})"
+            + uncertain(step)
         )
     return f"no permission or rule speaks about {name} on {obj}"
+
+
+def uncertain(step: dict[str, Any]) -> str:
+    """The warning that a decision rests on an uncertain rule ("" when it does not)."""
+    support = step.get("rule_support")
+    if support is None or support >= SURE:
+        return ""
+    return (f"; this rests on an uncertain rule: the posterior over rule sets supports it "
+            f"with p={support:.2f}")
 
 
 def remember(ctx: AppContext, report: CheckReport) -> None:
@@ -101,16 +129,17 @@ def check(ctx: AppContext, action: str, obj: str, record: bool = True) -> CheckR
     act = check_action(action)
     with ctx.read() as tx:
         row = tx.things.object(obj)
-        mind = load(tx, ctx.now, only=[obj]).mind
+        mind = load(tx, ctx.now, only=[obj], permitted=True).mind  # the examples: rule posteriors
+        i = mind.index[obj]
         settings = mind.settings
-        beliefs, sources = mind.posterior()[0], belief_sources(mind, 0)
+        beliefs, sources = mind.posterior()[i], belief_sources(mind, i)
         permissions = {p.action: p.id for p in tx.knowledge.permissions(row.id)}
         rule_ids = {r.text: r.id for r in tx.knowledge.rules()}
         steps = []
         for name in act.steps:
             if ACTIONS[name].target != "object" and not mind.rules[name] and name not in permissions:
                 continue
-            steps.append(_step(mind, name, permissions.get(name), rule_ids))
+            steps.append(_step(mind, i, name, permissions.get(name), rule_ids))
     own = [s for s in steps if s["action"] == action]
     prereq = [s for s in steps if s["action"] != action]
     forbidden_prereq = [s for s in prereq if s["decision"] == "forbidden"]

@@ -19,6 +19,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ownctl.app.context import AppContext
+from ownctl.app.decide import uncertain
 from ownctl.humanize import iso, plural
 from ownctl.logic.rules import ANY, Literal, parse_rule
 
@@ -120,11 +121,11 @@ def _step_sentence(step: dict[str, Any], obj: str) -> str:
         if len(rules) == 1:
             r = rules[0]
             return (f"rule {r['id']} '{r['text']}' holds with p={r['p']:.2g} ({op} {step['threshold']:g})"
-                    f"{_literals(r)}; it was {r['origin']}")
+                    f"{_literals(r)}; it was {r['origin']}{uncertain(step)}")
         each = "; ".join(f"rule {r['id']} '{r['text']}' p={r['p']:.2g}{_literals(r)} ({r['origin']})"
                          for r in rules)
         return (f"the rules of {action} together hold with p={step['p_forbidden']:.2g} "
-                f"({op} {step['threshold']:g}): {each}")
+                f"({op} {step['threshold']:g}): {each}{uncertain(step)}")
     return f"no permission or rule speaks about {action} on {obj}"
 
 

@@ -103,7 +103,8 @@ def remove_permission(ctx: AppContext, permission_id: int) -> Done:
 
 def list_rules(ctx: AppContext) -> list[dict[str, Any]]:
     """Every rule (forbid rules, then allow norms, per action) with its soft accuracy on its
-    action's stored permissions (None without any), as the conflict gate measures it.
+    action's stored permissions (None without any), as the conflict gate measures it, and its
+    ``posterior``: how sure the posterior over rule sets is of what the rule says on those examples.
 
     ``accuracy`` is the rule's own mean agreement between each permission and P(rule holds) over
     the action's examples (prior ownership, the percepts of when each permission was given);
@@ -118,9 +119,12 @@ def list_rules(ctx: AppContext) -> list[dict[str, Any]]:
         entry: dict[str, Any] = {"id": row.id, "text": row.text, "action": row.action, "origin": row.origin}
         entry.update(accuracy=None, set_accuracy=None, provenance=row.provenance, created=row.created)
         ev = evidence[row.action]
+        entry["posterior"] = None
         if ev.n and row.origin != "allow":
-            entry["accuracy"] = ev.soft_accuracy([rule_of(row.text, row.origin)])
+            rule = rule_of(row.text, row.origin)
+            entry["accuracy"] = ev.soft_accuracy([rule])
             entry["set_accuracy"] = ev.soft_accuracy(mind.rules[row.action])
+            entry["posterior"] = mind.rule_support(row.action, rule)
         out.append(entry)
     return out
 

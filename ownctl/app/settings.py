@@ -2,7 +2,9 @@
 
 Keys: ``threshold`` and ``threshold.ACTION`` (obedience thresholds in [0, 1]), ``trust`` (in [0, 1]),
 ``frozen.perms`` / ``frozen.rules`` and ``disabled.inference`` / ``disabled.prediction`` (booleans),
-``learner`` (the rule learner: ``ours`` or ``paper``).
+``learner`` (the rule learner: ``ours`` or ``paper``), ``decide.rules`` (decisions on the most
+probable rule set, ``map``, or on P(forbidden) marginalised over the posterior of rule sets,
+``posterior``).
 Stored values override the defaults of :class:`ownctl.config.Settings`.
 """
 
@@ -18,9 +20,10 @@ from ownctl.logic.vocab import ACTIONS
 FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.prediction")
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
 LEARNERS = ("ours", "paper")
-KEYS = (*PROBABILITIES, *FLAGS, "learner")
+DECIDE_RULES = ("map", "posterior")
+KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules")
 DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,
-                            "learner": Settings().learn.learner}
+                            "learner": Settings().learn.learner, "decide.rules": Settings().decide_rules}
 TRUE = ("true", "yes", "on", "1")
 FALSE = ("false", "no", "off", "0")
 
@@ -48,6 +51,10 @@ def parse_value(key: str, text: str) -> Any:
     check_key(key)
     if text == "default":
         return None
+    if key == "decide.rules":
+        if text not in DECIDE_RULES:
+            raise BadValue(f"unknown decision mode {text!r}; valid: {', '.join(DECIDE_RULES)}", DECIDE_RULES)
+        return text
     if key == "learner":
         if text not in LEARNERS:
             raise BadValue(f"unknown learner {text!r}; valid learners: {', '.join(LEARNERS)}", LEARNERS)
@@ -63,7 +70,8 @@ def parse_value(key: str, text: str) -> Any:
 
 def effective(stored: dict[str, Any]) -> dict[str, Any]:
     """Every key with its value: stored, else default (per-action thresholds only when set)."""
-    out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k)) for k in ("threshold", "trust", "learner")}
+    out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k))
+                           for k in ("threshold", "trust", "learner", "decide.rules")}
     out.update({k: bool(stored.get(k, False)) for k in FLAGS})
     out.update({k: v for k, v in sorted(stored.items()) if k.startswith("threshold.")})
     return out
@@ -77,4 +85,5 @@ def to_config(stored: dict[str, Any]) -> Settings:
         thresholds=thresholds,
         trust=float(stored.get("trust", DEFAULTS["trust"])),
         learn=LearnConfig(learner=str(stored.get("learner", DEFAULTS["learner"]))),
+        decide_rules=str(stored.get("decide.rules", DEFAULTS["decide.rules"])),
     )

@@ -37,6 +37,7 @@ from ownctl.config import Settings
 from ownctl.errors import DuplicateName, OwnctlError
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import Outcome, learn_norm, learn_permission
+from ownctl.learn.posterior import RulePosterior, rule_posterior
 from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import Norm, Rule
@@ -161,6 +162,7 @@ class Mind:
         self.allows: dict[str, list[Rule]] = {a: [] for a in ACTIONS}
         self.info: dict[str, dict[Rule, RuleInfo]] = {a: {} for a in ACTIONS}
         self._seq = 0
+        self._rule_posteriors: dict[str, RulePosterior] = {}
         self._reindex()
         self._stale: set[str] = set()  # agents whose predictions must be refitted before use
         self._posterior: np.ndarray | None = None
@@ -169,7 +171,7 @@ class Mind:
     def _reindex(self) -> None:
         self.index = {o.name: i for i, o in enumerate(self.objects)}
         self._frame: Frame | None = None
-        self._posterior = None
+        self._changed()
 
     def _base_rate(self) -> float:
         return float(KernelOwnershipModel(self.settings.predict).fit(np.zeros((0, 0)), np.zeros(0)).base_)
@@ -226,7 +228,7 @@ class Mind:
             if self._refit is not None and not fresh <= self._refit:
                 raise RuntimeError(f"the predictors of {sorted(fresh - self._refit)} were not loaded")
         self._stale.update(fresh)
-        self._posterior = None
+        self._changed()
 
     def _claimed_agents(self) -> list[str]:
         return [a for j, a in enumerate(self.agents) if not np.isnan(self.claims[:, j]).all()]
@@ -284,6 +286,35 @@ class Mind:
 
     def _changed(self) -> None:
         self._posterior = None
+        self._rule_posteriors = {}
+
+    def rule_posterior(self, action: str) -> RulePosterior:
+        """The posterior over the action's rule sets given its permissions (prior ownership), around
+        the current rules; the stated norms are in every set (:mod:`ownctl.learn.posterior`)."""
+        if action not in self._rule_posteriors:
+            ev, _ = self.evidence(action)
+            self._rule_posteriors[action] = rule_posterior(
+                ev, action, self.vocab, self.settings.learn, self.rules[action], self.given(action),
+                self.allows[action])
+        return self._rule_posteriors[action]
+
+    def rule_support(self, action: str, rule: Rule, obj: int | str | None = None) -> float:
+        """How sure the posterior over rule sets is of what ``rule`` says: on the object ``obj``
+        (posterior ownership), or on the action's examples (prior ownership). 1 with no examples."""
+        ev, _ = self.evidence(action)
+        if ev.n == 0:
+            return 1.0
+        frame = ev.frame if obj is None else self.frame().take([self.obj(obj)])
+        return self.rule_posterior(action).support(rule, frame)
+
+    def p_rules(self, action: str, obj: int | str) -> float:
+        """P(the action's rules forbid it on the object): on the learned rule set, or with
+        ``decide_rules = "posterior"`` marginalised over the posterior of rule sets."""
+        i = self.obj(obj)
+        frame = self.frame().take([i])
+        if self.settings.decide_rules == "posterior" and self.perms[action]:
+            return float(self.rule_posterior(action).p_forbidden(frame)[0])
+        return float(p_forbidden(self.rules[action], frame)[0])
 
     # -- knowledge ---------------------------------------------------------------------------
     def given(self, action: str) -> list[Rule]:
@@ -619,8 +650,7 @@ class Mind:
         given = self.permission(action, i)
         if given is not None:
             return bool(given.value >= PERMISSION_CUT)
-        thr = self.settings.threshold_for(action)
-        return bool(p_forbidden(self.rules[action], self.frame().take([i]))[0] >= thr)
+        return bool(self.p_rules(action, i) >= self.settings.threshold_for(action))
 
     def decide(self, action: str, obj: int | str, steps: Sequence[str]) -> tuple[bool, list[str]]:
         """Is ``action`` forbidden on the object (any of ``steps`` forbidden), and which steps forbid."""
