@@ -254,6 +254,8 @@ def _run(ctx: AppContext, step: Step, physics: bool, render: str | None, result:
     left = ", ".join(f"{s['object']} ({s['reason']})" for s in data["skipped"]) or "nothing"
     result.output = [f"moved: {moved}", f"left: {left}",
                      f"{data['mistakes']} mistakes, {len(data['violations'])} norm violations"]
+    if render is not None:
+        result.output.append(f"wrote {render}")
     result.result = data
     attempted = {s["object"] for s in data["steps"] if s["outcome"] != "done"}
     unsaid = [i for i in step.interrupts if i.object not in attempted]
@@ -282,6 +284,10 @@ def play(
         raise BadValue("--render needs --physics (a kinematic run has nothing to film)")
     if render is not None and not render.endswith((".mp4", ".png")):
         raise BadValue(f"--render must name a .mp4 or .png file, got {render!r}")
+    if render is not None:
+        from sim.gl import ensure_rendering
+
+        ensure_rendering()  # no working OpenGL: one line naming the package, before anything is written
     started, t0 = time.perf_counter(), ctx.now
     report = ScenarioReport(scenario, ctx.db)
     ctx.interface, ctx.command = "scenario", f"scenario play {scenario.source}"

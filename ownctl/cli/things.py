@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, fmt, table, wrote
 
 world = typer.Typer(
     help="Load and export whole worlds (TOML files of DESIGN section 11).", no_args_is_help=True
@@ -60,6 +60,7 @@ def world_export(
         typer.echo(text, nl=False)
     else:
         worldfile.write_text(output, text)
+        wrote(output)
 
 
 @agent.command("add")
