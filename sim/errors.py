@@ -1,7 +1,7 @@
 """Why a simulated world or step failed.
 
-A world that cannot be laid out is a user error (:class:`~ownctl.errors.OwnctlError`, exit code 1);
-a failed step is a :class:`~ownctl.errors.ScenarioFailed` (exit code 4 in the CLI).
+A world that cannot be laid out, or rendered, is a user error (:class:`~ownctl.errors.OwnctlError`,
+exit code 1); a failed step is a :class:`~ownctl.errors.ScenarioFailed` (exit code 4 in the CLI).
 """
 
 from __future__ import annotations
@@ -34,3 +34,7 @@ class GraspFailed(SimStepFailed):
 
 class NoRoom(SimStepFailed):
     """The home area or the bin has no free spot left for another block."""
+
+
+class RenderUnavailable(OwnctlError):
+    """No OpenGL backend can draw here; the message names the Debian package to install."""

@@ -1,7 +1,8 @@
 """Offscreen rendering: single PNG frames and frames captured while acting, written as MP4 or GIF.
 
-Rendering needs an OpenGL backend; headless machines use OSMesa (``MUJOCO_GL=osmesa``, Debian
-``libosmesa6``), which :mod:`sim` selects by default when it is installed. The renderer is created on
+Rendering needs an OpenGL backend; :mod:`sim.gl` picks one (EGL, then OSMesa on a headless machine)
+and checks that it draws before a recorder with a target is made, so a run that cannot render fails
+before it starts, with one line naming the package to install. The renderer itself is created on
 first use, so a world that never renders never touches OpenGL.
 """
 
@@ -16,6 +17,11 @@ from typing import Any
 import mujoco
 import numpy as np
 from numpy.typing import NDArray
+
+from sim.errors import RenderUnavailable
+from sim.gl import ensure_rendering
+
+__all__ = ["FPS", "HEIGHT", "WIDTH", "Recorder", "RenderUnavailable"]
 
 VIDEO_SUFFIXES = (".mp4", ".gif")
 WIDTH, HEIGHT, FPS = 640, 480, 25
@@ -32,10 +38,6 @@ def _close_all() -> None:
         recorder.close()
 
 
-class RenderUnavailable(RuntimeError):
-    """No OpenGL context could be created (for example OSMesa is not installed)."""
-
-
 @dataclass(eq=False)
 class Recorder:
     """Renders frames of one model; captures video frames every ``1 / fps`` s of sim time when ``video``."""
@@ -50,19 +52,25 @@ class Recorder:
 
     @classmethod
     def for_target(cls, model: mujoco.MjModel, render: str | None) -> Recorder:
-        """A recorder for ``render``: None (no frames), a PNG path, or an MP4/GIF path (frames kept)."""
+        """A recorder for ``render``: None (no frames), a PNG path, or an MP4/GIF path (frames kept).
+
+        With a target, raises :class:`RenderUnavailable` at once if no OpenGL backend can draw here.
+        """
         if render is None:
             return cls(model)
+        ensure_rendering()
         target = Path(render)
         return cls(model, target, video=target.suffix.lower() in VIDEO_SUFFIXES)
 
     def _frame(self, data: mujoco.MjData, camera: str) -> NDArray[np.uint8]:
         """One RGB frame (HEIGHT, WIDTH, 3) of ``data`` seen from ``camera``."""
         if self._renderer is None:
+            ensure_rendering()
             try:
                 self._renderer = mujoco.Renderer(self.model, height=HEIGHT, width=WIDTH)
             except Exception as exc:  # the GL backends raise ImportError, RuntimeError or OSError
-                raise RenderUnavailable(f"cannot create an OpenGL context for rendering: {exc}") from exc
+                first = (str(exc).splitlines() or [type(exc).__name__])[0]
+                raise RenderUnavailable(f"cannot create an OpenGL context for rendering: {first}") from exc
             _LIVE.add(self)
         self._renderer.update_scene(data, camera=camera)
         return self._renderer.render().copy()
@@ -81,13 +89,18 @@ class Recorder:
         Image.fromarray(self._frame(data, camera)).save(path)
         return path
 
-    def write_video(self, path: Path | None) -> Path:
-        """Write the captured frames to ``path`` (or the render target) as MP4 (H.264) or GIF."""
+    def write_video(self, path: Path | None, data: mujoco.MjData | None = None) -> Path:
+        """Write the captured frames to ``path`` (or the render target) as MP4 (H.264) or GIF.
+
+        With nothing captured (no action was performed), the video holds one frame of ``data``.
+        """
         import imageio.v2 as imageio
 
         out = path or self.target
         if out is None or out.suffix.lower() not in VIDEO_SUFFIXES:
             raise ValueError(f"a video needs an .mp4 or .gif path, got {out}")
+        if not self.frames and data is not None:
+            self.frames.append(self._frame(data, VIDEO_CAMERA))
         if not self.frames:
             raise ValueError("no frames were captured: create the world with render='FILE.mp4' and act first")
         out.parent.mkdir(parents=True, exist_ok=True)

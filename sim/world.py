@@ -241,5 +241,8 @@ class PhysicsWorld:
         return self.recorder.png(self.data, Path(path), camera)
 
     def finish_video(self, path: str | Path | None = None) -> Path:
-        """Write the frames captured so far to ``path`` (default: the ``render`` target) as MP4 or GIF."""
-        return self.recorder.write_video(Path(path) if path is not None else None)
+        """Write the frames captured so far to ``path`` (default: the ``render`` target) as MP4 or GIF.
+
+        If nothing was captured yet (no action), the video is one frame of the current scene.
+        """
+        return self.recorder.write_video(Path(path) if path is not None else None, self.data)

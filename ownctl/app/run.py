@@ -43,6 +43,10 @@ def check_options(task: str, instructor: str, arm: str, grasp: str, render: str 
             raise BadValue(f"unknown {what} {value!r}; valid: {', '.join(valid)}", valid)
     if render and not render.endswith((".png", ".mp4")):
         raise BadValue(f"--render must name a .png or .mp4 file, got {render!r}")
+    if render:
+        from sim.gl import ensure_rendering
+
+        ensure_rendering()  # no working OpenGL: one line naming the package, before anything is written
 
 
 @dataclass(frozen=True)

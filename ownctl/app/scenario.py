@@ -257,6 +257,8 @@ def _run(ctx: AppContext, step: Step, physics: bool, render: str | None, result:
     result.output = [f"delivered: {moved}", f"left: {left}",
                      f"{plural(data['mistakes'], 'mistake')}, "
                      f"{plural(len(data['violations']), 'norm violation')}"]
+    if render is not None:
+        result.output.append(f"wrote {render}")
     result.result = data
     attempted = {s["object"] for s in data["steps"] if s["outcome"] != "done"}
     unsaid = [i for i in step.interrupts if i.object not in attempted]
@@ -285,6 +287,10 @@ def play(
         raise BadValue("--render needs --physics (a kinematic run has nothing to film)")
     if render is not None and not render.endswith((".mp4", ".png")):
         raise BadValue(f"--render must name a .mp4 or .png file, got {render!r}")
+    if render is not None:
+        from sim.gl import ensure_rendering
+
+        ensure_rendering()  # no working OpenGL: one line naming the package, before anything is written
     started, t0 = time.perf_counter(), ctx.now
     report = ScenarioReport(scenario, ctx.db)
     ctx.interface, ctx.command = "scenario", f"scenario play {scenario.source}"

@@ -112,6 +112,12 @@ def emit(data: Any, json_out: bool, quiet: bool, human: str | Callable[[], None]
             typer.echo(human)
 
 
+def wrote(path: Any, quiet: bool = False) -> None:
+    """Say on stderr where a file was written (stdout stays one JSON document under --json)."""
+    if path is not None and not quiet:
+        typer.echo(f"wrote {path}", err=True)
+
+
 def table(title: str | None, columns: Sequence[str], rows: Sequence[Sequence[Any]],
           whole: Collection[str] = ()) -> Callable[[], None]:
     """A function printing a rich table (``None`` cells show as blank, text is never markup).

@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt
+from ownctl.cli.common import JsonOpt, QuietOpt, wrote
 from ownctl.cli.help import Group
 from ownctl.humanize import plural
 
@@ -59,6 +59,8 @@ def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, 
         typer.echo(json.dumps(result.as_dict(), ensure_ascii=False))
     elif not quiet:
         render(result)
+    for path in (csv, plot):
+        wrote(path, quiet)
 
 
 class _Bar:

@@ -6,7 +6,7 @@ from typing import Annotated, Any
 
 import typer
 
-from ownctl.cli.common import EXIT_FAILED, JsonOpt, QuietOpt, app_ctx, emit
+from ownctl.cli.common import EXIT_FAILED, JsonOpt, QuietOpt, app_ctx, emit, wrote
 from ownctl.humanize import plural
 
 #: how the live table shows each fate (the words the summary uses too)
@@ -89,5 +89,6 @@ def run(
             typer.echo(f"failed step: {failure}", err=True)
 
     emit(data, json_out, quiet, human)
+    wrote(render if physics else None, quiet)
     if not result.ok:
         raise typer.Exit(EXIT_FAILED)

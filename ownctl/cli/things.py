@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from ownctl.cli.common import JsonOpt, ObjArg, QuietOpt, app_ctx, emit, fmt, table
+from ownctl.cli.common import JsonOpt, ObjArg, QuietOpt, app_ctx, emit, fmt, table, wrote
 from ownctl.cli.help import Group
 from ownctl.cli.render import when
 
@@ -73,6 +73,7 @@ def world_export(
         typer.echo(text, nl=False)
     else:
         worldfile.write_text(output, text)
+        wrote(output)
 
 
 @agent.command("add")

@@ -8,15 +8,13 @@ import numpy as np
 import pytest
 from PIL import Image
 
-from sim.render import RenderUnavailable
 from sim.world import PhysicsWorld, SimBlock
 
+pytestmark = pytest.mark.usefixtures("rendering")  # skipped, with the reason, where nothing can draw
 
-def _render_or_skip(world: PhysicsWorld, path: Path, camera: str = "top") -> np.ndarray:
-    try:
-        world.render_png(path, camera=camera)
-    except RenderUnavailable as exc:
-        pytest.skip(f"OSMesa/OpenGL cannot be loaded here (install libosmesa6, MUJOCO_GL=osmesa): {exc}")
+
+def _render(world: PhysicsWorld, path: Path, camera: str = "top") -> np.ndarray:
+    world.render_png(path, camera=camera)
     return np.asarray(Image.open(path).convert("RGB")).astype(int)
 
 
@@ -26,8 +24,8 @@ def _red_pixels(img: np.ndarray) -> int:
 
 
 def test_png_shows_the_scene_with_its_coloured_blocks(tmp_path: Path) -> None:
-    red = _render_or_skip(PhysicsWorld([SimBlock("a", "red", (0.3, -0.3, 0.0))], []), tmp_path / "red.png")
-    blue = _render_or_skip(PhysicsWorld([SimBlock("a", "blue", (0.3, -0.3, 0.0))], []), tmp_path / "blue.png")
+    red = _render(PhysicsWorld([SimBlock("a", "red", (0.3, -0.3, 0.0))], []), tmp_path / "red.png")
+    blue = _render(PhysicsWorld([SimBlock("a", "blue", (0.3, -0.3, 0.0))], []), tmp_path / "blue.png")
     assert red.shape == (480, 640, 3)
     assert red.std() > 10  # not a blank frame
     assert _red_pixels(red) > 20 and _red_pixels(blue) == 0
@@ -38,7 +36,7 @@ def test_video_of_an_action_is_written(tmp_path: Path) -> None:
     import imageio.v2 as imageio
 
     world = PhysicsWorld([SimBlock("a", "green", (0.3, 0.3, 0.0))], [], render=str(tmp_path / "run.mp4"))
-    _render_or_skip(world, tmp_path / "probe.png")
+    _render(world, tmp_path / "probe.png")
     world.recorder.fps = 10  # fewer frames keep the test quick
     assert world.trash("a").ok
     out = world.finish_video()
