@@ -244,7 +244,9 @@ FLAG_COMMANDS = [("agent", "list", V), ("claim", "wallet", "alexis", V), (V, "ag
 def bad_files(draw: st.DrawFn, where: Path) -> str:
     """A path that is no good as a world, batch or scenario file (missing, a folder, bytes, not TOML)."""
     kind = draw(st.sampled_from(["missing", "folder", "bytes", "not toml", "bad key"]))
-    path = where / f"f{draw(st.integers(0, 10**9))}.toml"
+    path = where / f"f{draw(st.integers(0, 10**9))}-{kind.replace(' ', '-')}.toml"
+    if path.exists() and path.is_dir() != (kind == "folder"):
+        path = where / f"{path.stem}-{len(list(where.iterdir()))}.toml"  # drawn before as the other kind
     if kind == "folder":
         path.mkdir(exist_ok=True)
     elif kind == "bytes":
