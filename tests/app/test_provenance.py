@@ -49,3 +49,26 @@ def test_an_oracle_run_labels_claims_predictions_and_inference(ctx: AppContext) 
                                                                    {"base-rate"})
     admin.reset(ctx, "claims", yes=True)
     assert sources(ctx) == {"base-rate"}
+
+
+def test_a_played_scenario_labels_its_beliefs_as_what_they_are(tmp_path: Path) -> None:
+    from ownctl.app.scenario import play_file
+
+    db = str(tmp_path / "s.db")
+    AppContext(db, now=1.0).store(create=True).close()
+    scenarios = Path(__file__).resolve().parents[2] / "scenarios"
+    report = play_file(str(scenarios / "demo1-thats-mine.toml"), db, 2000.0)
+    assert report.passed
+    ctx = AppContext(db, now=3000.0)
+    try:
+        with ctx.read() as tx:
+            permitted = {p.object_id for p in tx.knowledge.permission_table()}
+            rows = tx.beliefs.belief_table()
+        claimed_agents = {b.agent_id for b in rows if b.claim_p is not None}
+        for b in rows:
+            assert b.prior_source == ("prediction" if b.agent_id in claimed_agents else "base-rate")
+            assert (b.posterior_source == "inference") == (b.object_id in permitted and b.posterior_p is not None)
+            if b.object_id not in permitted:
+                assert b.posterior_p is None
+    finally:
+        ctx.close()
