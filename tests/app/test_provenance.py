@@ -67,7 +67,8 @@ def test_a_played_scenario_labels_its_beliefs_as_what_they_are(tmp_path: Path) -
         claimed_agents = {b.agent_id for b in rows if b.claim_p is not None}
         for b in rows:
             assert b.prior_source == ("prediction" if b.agent_id in claimed_agents else "base-rate")
-            assert (b.posterior_source == "inference") == (b.object_id in permitted and b.posterior_p is not None)
+            inferred = b.object_id in permitted and b.posterior_p is not None
+            assert (b.posterior_source == "inference") == inferred
             if b.object_id not in permitted:
                 assert b.posterior_p is None
     finally:
