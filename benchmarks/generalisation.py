@@ -24,7 +24,10 @@ everything run on ``--families`` families of ``--trials`` trials each.
 Prints one table per condition group: mean over families (95% CI over families), worst family,
 the number of family cells below ProbFOIL and below allowing everything, and the paired difference
 ours - ProbFOIL (mean over families of the per-family mean difference, 95% CI) on the trials
-ProbFOIL ran.
+ProbFOIL ran. The committed cache holds the subset run so far (``nice -n 19``, 20 families x the
+three noiseless conditions x 3 trials, 10 families x the three noisy conditions x 2 trials):
+
+    nice -n 19 python benchmarks/generalisation.py --probfoil-trials 3 --probfoil-noisy-trials 2
 """
 
 from __future__ import annotations
@@ -222,7 +225,11 @@ def main() -> None:
     parser.add_argument("--no-probfoil", action="store_true")
     parser.add_argument("--cache", default=str(CACHE))
     parser.add_argument("--json", action="store_true")
+    parser.add_argument("--table", metavar="FILE.json", help="print the table of an earlier --json run")
     args = parser.parse_args()
+    if args.table:
+        _print(json.loads(Path(args.table).read_text()))
+        return
     seeds = [args.family_seed + k for k in range(args.families)]
 
     units = [(s, c, t) for s in seeds for c in range(len(CONDITIONS)) for t in range(args.trials)]

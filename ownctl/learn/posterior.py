@@ -30,6 +30,7 @@ import numpy as np
 
 from ownctl.config import LearnConfig
 from ownctl.learn.evidence import Evidence, Vocabulary
+from ownctl.learn.induce import subtract
 from ownctl.learn.model import Model, compatible, extensions, literal_list, model_for
 from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
@@ -75,8 +76,6 @@ class RulePosterior:
     def p_forbidden(self, frame: Frame) -> np.ndarray:
         """P(the action is forbidden) for every object of ``frame``, marginalised over rule sets
         (each set minus the allow norms), with the frame's ownership probabilities."""
-        from ownctl.learn.induce import subtract
-
         out = np.zeros(frame.n)
         for rules, p in zip(self.sets, self.probabilities, strict=True):
             if p > 0:
