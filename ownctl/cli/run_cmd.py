@@ -25,6 +25,7 @@ def run(
     arm: Annotated[str, typer.Option(help="auto (the nearer arm), left or right.")] = "auto",
     grasp: Annotated[str, typer.Option(help="weld (fingers close, then hold) or friction.")] = "weld",
     render: Annotated[str | None, typer.Option(metavar="FILE", help="Write FILE.png or FILE.mp4.")] = None,
+    camera: Annotated[str, typer.Option(help="View to render: front, shoulder or top.")] = "front",
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
@@ -35,7 +36,7 @@ def run(
 
     from ownctl.app import run as runner
 
-    runner.check_options(task, instructor, arm, grasp, render)
+    runner.check_options(task, instructor, arm, grasp, render, camera)
     live_rows: list[Any] = []
     shown = not (json_out or quiet)
     grid = Table("object", "fate", "reason", "mistake", title=f"{task}", expand=False)
@@ -48,7 +49,7 @@ def run(
                          "yes" if record.mistake else "")
 
     kwargs = dict(instructor=instructor, physics=physics, seed=seed, layout_seed=layout_seed, arm=arm,
-                  grasp=grasp, render=render, on_step=on_step)
+                  grasp=grasp, render=render, camera=camera, on_step=on_step)
     if shown:
         with Live(grid, console=console, refresh_per_second=8, transient=False):
             result = runner.run(app_ctx(ctx), task, **kwargs)
