@@ -21,6 +21,7 @@ import numpy as np
 from ownctl.errors import BadValue, DuplicateName, UnknownName
 from sim import baxter
 from sim.errors import PhysicsUnstable, SimStepFailed, Unreachable
+from sim.ik import YAW_CENTER
 from sim.layout import SPACING, home_slots, map_for, place_blocks
 from sim.planner import PICK_OPENING, bin_cells
 from sim.render import Recorder
@@ -35,6 +36,8 @@ ARMS = ("auto", "left", "right")
 GRASPS = ("weld", "friction")
 SETTLE = 0.3  # seconds the world runs after an action before the result is checked
 STILL = 0.003  # metres: a block closer than this to its start has not moved
+STOP_SHORT = 0.07  # metres above a block's centre where a stopped reach halts
+PAUSE = 0.5  # seconds a stopped reach holds still before going back
 
 
 @dataclass(frozen=True)
@@ -165,6 +168,11 @@ class PhysicsWorld:
         """Find block ``name``, pick it up, go home and put it down inside the home area."""
         return self._act("collect", name, self._collect)
 
+    def stop_short(self, name: str) -> StepOutcome:
+        """Reach for block ``name``, stop short above it and go back, leaving it where it is: what a
+        refusal looks like when the robot is stopped as it reaches ("No Baxter, that's mine!")."""
+        return self._act("stopShort", name, self._stop_short)
+
     def go_home(self) -> None:
         """Move both hands up and back to their park poses beside the table.
 
@@ -209,14 +217,27 @@ class PhysicsWorld:
         self.skills.park(side)
         return "home"
 
+    def _stop_short(self, block: int) -> None:
+        side = self._side(block)
+        yaw = YAW_CENTER[side]
+        x, y, z = self.skills.state(block).center
+        self._require_reach(side, block, yaw, [])
+        self.robot.set_gripper(side, PICK_OPENING, seconds=0.0)
+        self.robot.move(side, np.array([x, y, HOVER]), yaw)
+        self.skills.vertical(side, np.array([x, y, z + STOP_SHORT]))
+        self.robot.wait(PAUSE)
+        self.skills.park(side)
+
     def _require_reach(self, side: str, block: int, yaw: float, more: list[tuple[np.ndarray, float]]) -> None:
         x, y, z = self.skills.state(block).center
         poses = [(np.array([x, y, HOVER]), yaw), (np.array([x, y, z]), yaw), *more]
         if not self.skills.reachable(side, poses):
             raise Unreachable(f"the {side} arm cannot reach every pose of this action")
 
-    def _act(self, action: str, name: str, body: Callable[[int], str]) -> StepOutcome:
-        """Run one action; turn failures into a failed outcome, restoring the state on instability."""
+    def _act(self, action: str, name: str, body: Callable[[int], str | None]) -> StepOutcome:
+        """Run one action; turn failures into a failed outcome, restoring the state on instability.
+
+        ``body`` returns the area the block must end in (None: no area to check)."""
         block = self._check_name(name)
         start = self.sim_time
         snapshot = self.robot.snapshot()
@@ -230,7 +251,7 @@ class PhysicsWorld:
         except SimStepFailed as exc:
             elapsed = self._recover(snapshot) + self.sim_time - start
             return StepOutcome(False, action, name, str(exc), elapsed)
-        if not self.in_area(name, area):
+        if area is not None and not self.in_area(name, area):
             message = f"{name} ended outside the {area} area"
             return StepOutcome(False, action, name, message, self.sim_time - start)
         return StepOutcome(True, action, name, None, self.sim_time - start)

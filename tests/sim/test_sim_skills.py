@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 from ownctl.errors import BadValue, DuplicateName, UnknownName
+from sim.robot import PARK
 from sim.world import PhysicsWorld, SimArea, SimBlock, StepOutcome
 
 AREAS = [SimArea("trash", (-0.3, 0.6, 0.2, 1.1)), SimArea("home", (-0.1, -0.1, 0.1, 0.1))]
@@ -122,3 +123,22 @@ def test_a_block_with_something_on_top_is_not_grasped() -> None:
     outcome = world.trash(bottom)
     assert not outcome.ok and "grasp" in (outcome.error or "")
     assert _moved(world, where, "") < 0.003  # nothing pushed over (the four-high towers settle a little)
+
+
+def test_stop_short_reaches_for_the_block_and_goes_back_without_touching_it() -> None:
+    world = _world()
+    before = _where(world)
+    closest = {"d": np.inf}
+    side = "left" if before["red1"][1] >= 0 else "right"  # the nearer arm reaches
+    site = world.robot.ik[side].site
+
+    def watch(data: object) -> None:
+        grip = world.data.site_xpos[site]
+        closest["d"] = min(closest["d"], float(np.linalg.norm(grip - np.array(before["red1"]))))
+
+    world.robot.frame_hook = watch
+    outcome = world.stop_short("red1")
+    assert outcome.ok and outcome.action == "stopShort", outcome
+    assert closest["d"] < 0.1  # the hand came down close over the block
+    assert _moved(world, before, "") < 0.001  # and left every block where it was
+    assert np.linalg.norm(world.robot.grip_pos(side) - np.array(PARK[side])) < 0.01  # back at rest
