@@ -43,9 +43,13 @@ class Rect:
 def overlap(a: Rect, b: Rect, margin: float = 0.0) -> bool:
     """True if ``a`` grown by ``margin`` on every side meets ``b`` in plan view and their z spans meet.
 
-    Separating-axis test on the four edge normals of the two rectangles.
+    Far-apart rectangles are told apart by their circumscribed circles; the others by the
+    separating-axis test on the four edge normals of the two rectangles.
     """
     if a.bottom > b.top or b.bottom > a.top:
+        return False
+    reach = float(np.hypot(*a.half) + np.hypot(*b.half)) + margin * np.sqrt(2)  # circumscribed circles
+    if (a.center[0] - b.center[0]) ** 2 + (a.center[1] - b.center[1]) ** 2 > reach * reach:
         return False
     ca, cb = a.corners(), b.corners()
     for axis in np.vstack([a.axes(), b.axes()]):

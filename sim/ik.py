@@ -28,9 +28,8 @@ YAW_CENTER: dict[str, float] = {"left": 1.0, "right": 2.1}
 
 def down_rotation(yaw: float) -> Vec:
     """Rotation (3, 3) of a hand pointing straight down, fingers closing along (cos yaw, sin yaw, 0)."""
-    y = np.array([np.cos(yaw), np.sin(yaw), 0.0])
-    z = np.array([0.0, 0.0, -1.0])
-    return np.column_stack([np.cross(y, z), y, z])
+    c, s = np.cos(yaw), np.sin(yaw)
+    return np.array([[-s, c, 0.0], [c, s, 0.0], [0.0, 0.0, -1.0]])  # columns: y x z, y, z = down
 
 
 @dataclass(frozen=True)

@@ -8,7 +8,7 @@ Choices are deterministic: ties go to the first candidate in a fixed order.
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,13 +21,15 @@ from sim.footprint import Rect, face_yaw, finger_rects, overlap, palm_rect, squa
 Vec = NDArray[np.float64]
 
 H = cfg.BLOCK_HALF
-PICK_OPENING = H + 0.004  # finger inner faces this far from the block centre when going down to grasp
-PLACE_OPENING = H + 0.003  # ... and when letting go of a block on a tower
-DROP_OPENING = H + 0.006
+PICK_OPENING = H + 0.006  # finger inner faces this far from the block centre when going down to grasp
+PLACE_OPENING = H + 0.004  # ... and when letting go of a block on a tower
+DROP_OPENING = H + 0.01
 MARGIN = 0.0015  # clearance kept between a swept finger and any obstacle
 PALM_DEPTH = baxter.GRIP_SITE_Z - 2 * baxter.PALM_HALF[2]  # palm underside above the grip site
-ALIGNED = 0.004  # a block within this distance of a cell's centre belongs to that cell's tower
-MAX_TOWER = 0.06  # a home tower may not grow above this height over the table
+ALIGNED = 0.008  # a block within this distance of a cell's centre belongs to that cell's tower
+MAX_TOWER = 6 * H + 0.005  # a home tower may not grow above this height over the table (3 blocks)
+MAX_PILE = 3  # blocks on one drop cell of the bin at most: a higher pile may topple over the wall
+BIN_REACH = DROP_OPENING + baxter.FINGER_THICK + MARGIN + 0.002  # bin cell centre to a wall's inner face
 
 
 @dataclass(frozen=True)
@@ -123,12 +125,14 @@ def home_put_down(
     blocks: Sequence[BlockState],
     block_yaw_in_hand: float,
     current: float,
+    usable: Callable[[PutDown], bool] | None = None,
 ) -> PutDown | None:
-    """The home cell with the lowest clear tower (ties: first cell); None if every cell is blocked or full.
+    """The home cell with the lowest clear tower (ties: first cell) that is ``usable`` (say, reachable by
+    the arm); None if every cell is blocked, full or unusable.
 
     ``block_yaw_in_hand`` is the held block's yaw relative to the hand; the block lands axis-aligned.
     """
-    best: tuple[float, int, PutDown] | None = None
+    choices: list[tuple[float, int, PutDown]] = []
     for k, cell in enumerate(cells):
         c = np.asarray(cell)
         members = [b for b in blocks if np.hypot(*(np.asarray(b.center[:2]) - c)) < ALIGNED]
@@ -143,22 +147,22 @@ def home_put_down(
             continue
         for yaw in closing_options(-block_yaw_in_hand, current):
             if hand_clear(c, yaw, PLACE_OPENING, z, obstacles):
-                choice = PutDown((float(c[0]), float(c[1]), float(z)), float(yaw))
-                if best is None or (support, k) < best[:2]:
-                    best = (support, k, choice)
+                choices.append((support, k, PutDown((float(c[0]), float(c[1]), float(z)), float(yaw))))
                 break
-    return None if best is None else best[2]
+    for _, _, choice in sorted(choices, key=lambda t: t[:2]):
+        if usable is None or usable(choice):
+            return choice
+    return None
 
 
-def bin_cells(bin_box: tuple[float, float, float, float], pitch: float = 0.02) -> list[tuple[float, float]]:
+def bin_cells(bin_box: tuple[float, float, float, float], pitch: float) -> list[tuple[float, float]]:
     """Drop points in the bin, centre first: a grid at least ``pitch`` apart, spread out to where open
     fingers still clear the walls, so dropped blocks land apart and can be picked up again.
     """
     x0, y0, x1, y1 = bin_box
-    reach = DROP_OPENING + baxter.FINGER_THICK + MARGIN + 0.002
-    half = (np.array([x1 - x0, y1 - y0]) / 2) - cfg.BIN_WALL - reach
+    half = (np.array([x1 - x0, y1 - y0]) / 2) - cfg.BIN_WALL - BIN_REACH
     centre = np.array([(x0 + x1) / 2, (y0 + y1) / 2])
-    counts = [max(1, int(2 * half[k] // pitch) + 1) for k in (0, 1)]
+    counts = [max(1, int(np.floor(2 * half[k] / pitch + 1e-9)) + 1) for k in (0, 1)]
     axes = [np.linspace(-half[k], half[k], counts[k]) if counts[k] > 1 else np.zeros(1) for k in (0, 1)]
     pts = [centre + np.array([dx, dy]) for dx in axes[0] for dy in axes[1]]
     pts.sort(key=lambda p: (round(float(np.linalg.norm(p - centre)), 6), float(p[0]), float(p[1])))
@@ -166,19 +170,28 @@ def bin_cells(bin_box: tuple[float, float, float, float], pitch: float = 0.02) -
 
 
 def drop_point(
-    cells: Sequence[tuple[float, float]], blocks: Sequence[BlockState]
-) -> tuple[float, float, float]:
-    """The bin cell with the lowest pile (ties: first cell) and the pile's top height there.
+    cells: Sequence[tuple[float, float]],
+    blocks: Sequence[BlockState],
+    usable: Callable[[tuple[float, float, float]], bool] | None = None,
+) -> tuple[float, float, float] | None:
+    """The ``usable`` bin cell (say, reachable by the arm) with the fewest blocks on it, below
+    ``MAX_PILE`` (ties: the lowest pile top, then the first cell), and the pile's top height there;
+    None if no cell is usable.
 
-    A pile counts every block within 2 block widths of the cell's centre (tilted ones included).
+    The top counts every block within 2 block widths of the cell's centre (tilted ones included), so
+    a dropped block clears its neighbours' piles too.
     """
     floor = cfg.TABLE_TOP + cfg.BIN_FLOOR
-    best: tuple[float, int] | None = None
-    for k, cell in enumerate(cells):
-        near = [b.center[2] + 1.5 * H for b in blocks if np.hypot(*(np.asarray(b.center[:2]) - cell)) < 4 * H]
+    spots = []
+    for k, (x, y) in enumerate(cells):
+        gaps = [np.hypot(b.center[0] - x, b.center[1] - y) for b in blocks]
+        on = sum(1 for g in gaps if g < 1.5 * H)
+        if on >= MAX_PILE:
+            continue
+        near = [b.center[2] + 1.5 * H for b, g in zip(blocks, gaps, strict=True) if g < 4 * H]
         top = max(near, default=floor)
-        if best is None or (top, k) < best:
-            best = (top, k)
-    assert best is not None
-    x, y = cells[best[1]]
-    return (x, y, best[0])
+        spots.append((on, top, k, (x, y)))
+    for _, top, _, (x, y) in sorted(spots):
+        if usable is None or usable((x, y, top)):
+            return (x, y, top)
+    return None

@@ -20,12 +20,12 @@ from numpy.typing import NDArray
 
 from sim.errors import RenderUnavailable
 from sim.gl import ensure_rendering
+from sim.scene import DEFAULT_CAMERA
 
 __all__ = ["FPS", "HEIGHT", "WIDTH", "Recorder", "RenderUnavailable"]
 
 VIDEO_SUFFIXES = (".mp4", ".gif")
 WIDTH, HEIGHT, FPS = 640, 480, 25
-VIDEO_CAMERA = "front"
 
 
 _LIVE: weakref.WeakSet[Recorder] = weakref.WeakSet()
@@ -40,27 +40,29 @@ def _close_all() -> None:
 
 @dataclass(eq=False)
 class Recorder:
-    """Renders frames of one model; captures video frames every ``1 / fps`` s of sim time when ``video``."""
+    """Renders frames of one model; captures video frames from ``camera`` every ``1 / fps`` s of sim time
+    when ``video``."""
 
     model: mujoco.MjModel
     target: Path | None = None
     video: bool = False
+    camera: str = DEFAULT_CAMERA
     fps: int = FPS
     frames: list[NDArray[np.uint8]] = field(default_factory=list)
     _renderer: mujoco.Renderer | None = None
     _next: float = 0.0
 
     @classmethod
-    def for_target(cls, model: mujoco.MjModel, render: str | None) -> Recorder:
+    def for_target(cls, model: mujoco.MjModel, render: str | None, camera: str = DEFAULT_CAMERA) -> Recorder:
         """A recorder for ``render``: None (no frames), a PNG path, or an MP4/GIF path (frames kept).
 
         With a target, raises :class:`RenderUnavailable` at once if no OpenGL backend can draw here.
         """
         if render is None:
-            return cls(model)
+            return cls(model, camera=camera)
         ensure_rendering()
         target = Path(render)
-        return cls(model, target, video=target.suffix.lower() in VIDEO_SUFFIXES)
+        return cls(model, target, video=target.suffix.lower() in VIDEO_SUFFIXES, camera=camera)
 
     def _frame(self, data: mujoco.MjData, camera: str) -> NDArray[np.uint8]:
         """One RGB frame (HEIGHT, WIDTH, 3) of ``data`` seen from ``camera``."""
@@ -78,7 +80,7 @@ class Recorder:
     def hook(self, data: mujoco.MjData) -> None:
         """Per-step callback: keep a frame whenever another ``1 / fps`` s of sim time has passed."""
         if data.time + 1e-9 >= self._next:
-            self.frames.append(self._frame(data, VIDEO_CAMERA))
+            self.frames.append(self._frame(data, self.camera))
             self._next = data.time + 1.0 / self.fps
 
     def png(self, data: mujoco.MjData, path: Path, camera: str) -> Path:
@@ -100,7 +102,7 @@ class Recorder:
         if out is None or out.suffix.lower() not in VIDEO_SUFFIXES:
             raise ValueError(f"a video needs an .mp4 or .gif path, got {out}")
         if not self.frames and data is not None:
-            self.frames.append(self._frame(data, VIDEO_CAMERA))
+            self.frames.append(self._frame(data, self.camera))
         if not self.frames:
             raise ValueError("no frames were captured: create the world with render='FILE.mp4' and act first")
         out.parent.mkdir(parents=True, exist_ok=True)

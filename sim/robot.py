@@ -28,9 +28,9 @@ FrameHook = Callable[[mujoco.MjData], None]
 CTRL_EVERY = 5  # physics steps per control tick (10 ms)
 SPEED = 0.6  # peak Cartesian speed of long moves (m/s)
 YAW_SPEED = 3.0  # wrist yaw rate (rad/s)
-PARK: dict[str, tuple[float, float, float]] = {  # idle hand positions: high and beside the table strip
-    "left": (0.42, 0.40, cfg.TABLE_TOP + 0.25),
-    "right": (0.42, -0.40, cfg.TABLE_TOP + 0.25),
+PARK: dict[str, tuple[float, float, float]] = {  # idle hand positions: high over the strip's near corners
+    "left": (0.38, 0.40, cfg.TABLE_TOP + 0.32),
+    "right": (0.38, -0.40, cfg.TABLE_TOP + 0.32),
 }
 
 

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ownctl.errors import BadValue
 from sim import baxter
 from sim import scene_config as cfg
 
@@ -47,15 +48,31 @@ def _camera(
     return f'<camera name="{name}" pos="{pos[0]} {pos[1]} {pos[2]}" xyaxes="{axes}" fovy="{fovy}"/>'
 
 
+# name -> (position, point looked at, vertical field of view in degrees)
+CAMERAS: dict[str, tuple[tuple[float, float, float], tuple[float, float, float], float]] = {
+    # the default view: in front of the table, off to the robot's left, framed on the whole robot,
+    # the table and the bin (tests/sim/test_sim_camera.py checks it)
+    "front": ((2.2, -0.8, 1.6), (0.4, 0.05, 1.2), 36.0),
+    # over the robot's left shoulder, looking down at the table as the robot sees it
+    "shoulder": ((0.0, 0.75, 1.95), (0.62, -0.12, cfg.TABLE_TOP), 50.0),
+}
+DEFAULT_CAMERA = "front"
+CAMERA_NAMES = (*CAMERAS, "top")
+
+
+def check_camera(name: str) -> None:
+    """Refuse an unknown camera name, listing the known ones."""
+    if name not in CAMERA_NAMES:
+        raise BadValue(f"unknown camera {name!r}; known cameras: {', '.join(CAMERA_NAMES)}", CAMERA_NAMES)
+
+
 def _cameras() -> str:
-    """Front (facing the robot), corner and top views of the table strip."""
-    cx, top = cfg.MAP_CENTER_X, cfg.TABLE_TOP
+    """The named views (:data:`CAMERAS`) and a top view of the table strip."""
+    top = cfg.TABLE_TOP + 1.15
+    cx = (cfg.REACH[0] + cfg.REACH[2]) / 2
     return "\n".join(
-        [
-            _camera("front", (cx + 0.75, 0.0, top + 0.6), (cx - 0.05, 0.0, top + 0.08), 34),
-            _camera("corner", (cx + 0.6, -0.65, top + 0.55), (cx - 0.05, 0.0, top + 0.08), 36),
-            f'<camera name="top" pos="{cx} 0 {top + 0.6}" xyaxes="0 -1 0 1 0 0" fovy="40"/>',
-        ]
+        [_camera(name, pos, target, fovy) for name, (pos, target, fovy) in CAMERAS.items()]
+        + [f'<camera name="top" pos="{cx} 0 {top}" xyaxes="0 -1 0 1 0 0" fovy="36"/>']
     )
 
 
@@ -125,12 +142,15 @@ def scene_xml(
     <quality shadowsize="2048"/>
   </visual>
   <asset>
+    <texture name="sky" type="skybox" builtin="gradient" rgb1="0.62 0.66 0.72" rgb2="0.2 0.21 0.24"
+             width="256" height="256"/>
     <texture name="grid" type="2d" builtin="checker" rgb1="0.75 0.75 0.78" rgb2="0.65 0.65 0.68"
              width="256" height="256"/>
     <material name="floor" texture="grid" texrepeat="8 8"/>
   </asset>
   <default>
     <default class="robot"><geom contype="2" conaffinity="1" group="1"/></default>
+    <default class="visual"><geom contype="0" conaffinity="0" group="2" mass="0"/></default>
     <default class="finger">
       <geom contype="1" conaffinity="1" condim="4" friction="1.5 0.02 0.001" solref="0.005 1"
             solimp="0.95 0.99 0.001" rgba="0.3 0.3 0.3 1"/>

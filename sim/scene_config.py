@@ -1,29 +1,30 @@
 """Measured constants of the simulated table scene (metres, seconds, kilograms).
 
-Reach: with a top-down hand, both arms together reach the table strip x in [0.40, 0.80] m,
-y in [-0.4, 0.4] m at a table height of 0.80 m, at grasp height and at hover height alike. The
-workspace map squeezes the workspace box [-1.1, 1.1]^2 into x in [0.402, 0.798], y in [-0.198, 0.198].
-Blocks are 10 mm cubes: the mapped home area is only 36 mm square, yet it must hold a 2 x 2 grid of
-block towers with room for the fingers between them; 20 blocks, the bin and home fit the square.
+Reach: with a top-down hand, the nearer arm reaches every block centre of the table strip
+``REACH`` (x 0.43-0.77 m in front of the robot, y within 0.46 m of its midline) at grasp height and at
+hover height, with any closing direction within a quarter turn of the arm's comfortable one
+(``tests/sim/test_sim_ik.py`` checks it). The strip is wider than it is deep, so the workspace map
+(:mod:`sim.workspace`) scales the two axes separately.
+
+Blocks are 44 mm cubes: at 640 x 480 the default camera, framed on the whole robot, the table and
+the bin, shows each one more than 20 pixels wide, so their colours can be told apart.
 """
 
 from __future__ import annotations
 
-TABLE_TOP = 0.80  # world z of the table surface
-TABLE_CENTER = (0.62, 0.0)
-TABLE_HALF = (0.32, 0.55)
+TABLE_TOP = 0.88  # world z of the table surface
+TABLE_CENTER = (0.56, 0.0)
+TABLE_HALF = (0.24, 0.5)  # the table spans x 0.32-0.80, y -0.5-0.5: the strip and a margin
 
-BLOCK_HALF = 0.005  # half edge of a block
-BLOCK_MASS = 0.01
+REACH: tuple[float, float, float, float] = (0.43, -0.46, 0.77, 0.46)  # block centres, world x0 y0 x1 y1
+
+BLOCK_HALF = 0.022  # half edge of a block
+BLOCK_MASS = 0.06
 REST_Z = TABLE_TOP + BLOCK_HALF  # centre height of a block resting on the table
 
-MAP_SCALE = 0.18  # world metres per workspace metre
-MAP_CENTER_X = 0.60  # where the workspace origin lands
-MAP_CENTER_Y = 0.0
-
-BIN_WALL = 0.004  # wall thickness; the bin's outer faces are the mapped trash area's edges
-BIN_HEIGHT = 0.04  # wall height above the table
-BIN_FLOOR = 0.003  # floor plate thickness
+BIN_WALL = 0.006  # wall thickness; the bin's outer faces are the mapped trash area's edges
+BIN_HEIGHT = 0.10  # wall height above the table: under the palm of a hand grasping on the bin floor
+BIN_FLOOR = 0.004  # floor plate thickness
 
 HOME_MAT = 0.0005  # the home area is drawn as a thin, collision-free mat
 

@@ -14,14 +14,14 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sim import scene_config as cfg
-from sim.errors import GraspFailed, NoRoom
+from sim.errors import GraspFailed, NoRoom, Unreachable
 from sim.ik import Q_NOMINAL, YAW_CENTER, down_rotation
 from sim.planner import (
     DROP_OPENING,
     PICK_OPENING,
     PLACE_OPENING,
     BlockState,
-    bin_cells,
+    PutDown,
     covered,
     drop_point,
     grasp_yaw,
@@ -33,8 +33,11 @@ from sim.scene import block_body
 
 Vec = NDArray[np.float64]
 
-HOVER = cfg.TABLE_TOP + 0.12  # grip-site height for every horizontal move
-SLOW = 0.25  # m/s for the vertical approach and retreat
+HOVER = cfg.TABLE_TOP + 0.2  # grip-site height for every horizontal move: above towers, piles and walls
+SLOW = 0.25  # m/s for the last (first) APPROACH metres of a vertical approach (retreat)
+APPROACH = 0.04
+DROP_GAP = 0.006  # a trashed block is let go this far above the pile under it
+CROSS = 0.08  # an arm puts blocks down at most this far past the midline, on the other arm's side
 H = cfg.BLOCK_HALF
 
 
@@ -54,7 +57,8 @@ def yaw_of(quat: Vec) -> float:
 
 
 class Skills:
-    """Skills of both arms over ``n_blocks`` blocks, a bin on ``bin_box`` and home cells (world frame)."""
+    """Skills of both arms over ``n_blocks`` blocks, a bin on ``bin_box``, home and bin cells (world
+    frame)."""
 
     def __init__(
         self,
@@ -62,12 +66,13 @@ class Skills:
         n_blocks: int,
         bin_box: tuple[float, float, float, float],
         home_cells: list[tuple[float, float]],
+        drop_cells: list[tuple[float, float]],
         grasp: str = "weld",
     ) -> None:
         self.robot = robot
         self.bodies = [robot.model.body(block_body(i)).id for i in range(n_blocks)]
         self.walls = wall_rects(bin_box)
-        self.bin_cells = bin_cells(bin_box)
+        self.bin_cells = drop_cells
         self.home_cells = home_cells
         self.weld = grasp == "weld"
 
@@ -87,6 +92,12 @@ class Skills:
     def nearer_arm(self, block: int) -> str:
         """The arm on the block's side of the robot (left for y >= 0)."""
         return "left" if self.state(block).center[1] >= 0 else "right"
+
+    @staticmethod
+    def own_side(side: str, y: float) -> bool:
+        """True if ``y`` is on ``side``'s half of the table or at most ``CROSS`` past the midline, where
+        the arm's motions stay well inside its reach (an arm reaches further, but awkwardly)."""
+        return y >= -CROSS if side == "left" else y <= CROSS
 
     def reachable(self, side: str, poses: list[tuple[Vec, float]]) -> bool:
         """True if IK finds every (grip position (3,), closing yaw) of ``poses`` for ``side``, chained."""
@@ -115,11 +126,11 @@ class Skills:
         x, y, z = target.center
         robot.set_gripper(side, PICK_OPENING, seconds=0.0)
         robot.move(side, np.array([x, y, HOVER]), yaw)
-        robot.move(side, np.array([x, y, z]), speed=SLOW)
+        self.vertical(side, np.array([x, y, z]))
         robot.set_gripper(side, 0.0, seconds=0.2)
         if self.weld and not robot.attach(side, block):
             robot.set_gripper(side, PICK_OPENING, seconds=0.1)
-            robot.move(side, np.array([x, y, HOVER]), speed=SLOW)
+            self.vertical(side, np.array([x, y, HOVER]))
             raise GraspFailed("the fingers did not close on the block")
         site = robot.ik[side].site
         rot = robot.data.site_xmat[site].reshape(3, 3)
@@ -127,11 +138,30 @@ class Skills:
         held = Held(
             block, rot.T @ (np.asarray(now.center) - robot.data.site_xpos[site]), now.yaw - robot.yaw[side]
         )
-        robot.move(side, np.array([x, y, HOVER]), speed=SLOW)
+        self.vertical(side, np.array([x, y, HOVER]))
         if self.state(block).center[2] < cfg.TABLE_TOP + 0.06:
             self.release(side, PICK_OPENING)
             raise GraspFailed(f"the block slipped out of the {side} gripper while lifting")
         return held
+
+    def vertical(self, side: str, goal: Vec) -> None:
+        """Go straight up or down to ``goal`` (3,): slowly within ``APPROACH`` of the low end, fast
+        elsewhere."""
+        here = self.robot.target[side]
+        goal = np.asarray(goal, dtype=float)
+        drop = goal[2] - here[2]
+        if abs(drop) <= APPROACH + 1e-9:
+            self.robot.move(side, goal, speed=SLOW)
+            return
+        turn = goal.copy()
+        if drop < 0:  # fast to just above the work, then slowly onto it
+            turn[2] = goal[2] + APPROACH
+            self.robot.move(side, turn)
+            self.robot.move(side, goal, speed=SLOW)
+        else:  # slowly off the work, then fast up
+            turn[2] = here[2] + APPROACH
+            self.robot.move(side, turn, speed=SLOW)
+            self.robot.move(side, goal)
 
     def grip_target(self, held: Held, center: Vec, yaw: float) -> Vec:
         """Grip-site position (3,) putting the held block's centre at ``center`` with the hand at ``yaw``."""
@@ -149,9 +179,19 @@ class Skills:
             self.release(side, PICK_OPENING)
             raise GraspFailed("the block was lost while carrying it")
 
-    def plan_drop(self, block: int) -> tuple[float, float, float]:
-        """Bin drop point (x, y, pile top z) for ``block``."""
-        return drop_point(self.bin_cells, self.others(block))
+    def plan_drop(self, side: str, block: int, yaw: float) -> tuple[float, float, float]:
+        """Bin drop point (x, y, pile top z) for ``block`` that ``side``'s hand reaches at ``yaw``."""
+
+        def reached(spot: tuple[float, float, float]) -> bool:
+            x, y, top = spot
+            return self.own_side(side, y) and self.reachable(
+                side, [(np.array([x, y, HOVER]), yaw), (np.array([x, y, top + H + DROP_GAP]), yaw)]
+            )
+
+        spot = drop_point(self.bin_cells, self.others(block), reached)
+        if spot is None:
+            raise Unreachable(f"the {side} arm reaches no drop point in the bin")
+        return spot
 
     def drop_in_bin(self, side: str, held: Held, spot: tuple[float, float, float]) -> None:
         """Carry the held block over ``spot``, lower it just above the pile there and let go."""
@@ -160,14 +200,22 @@ class Skills:
         above = self.grip_target(held, np.array([x, y, HOVER]), yaw)
         self.robot.move(side, np.array([above[0], above[1], HOVER]), yaw)
         self.check_held(side, held)
-        low = self.grip_target(held, np.array([x, y, top + H + 0.006]), yaw)
-        self.robot.move(side, low, speed=SLOW)
+        low = self.grip_target(held, np.array([x, y, top + H + DROP_GAP]), yaw)
+        self.vertical(side, low)
         self.release(side, DROP_OPENING)
-        self.robot.move(side, np.array([low[0], low[1], HOVER]), speed=SLOW)
+        self.vertical(side, np.array([low[0], low[1], HOVER]))
 
     def plan_home(self, side: str, block: int, held_yaw: float) -> tuple[tuple[float, float, float], float]:
-        """Home put-down spot (block centre) and closing yaw; raises :class:`NoRoom` if none is clear."""
-        choice = home_put_down(self.home_cells, self.others(block), held_yaw, YAW_CENTER[side])
+        """Home put-down spot (block centre) and closing yaw that ``side`` reaches; raises :class:`NoRoom`
+        if none is clear."""
+
+        def reached(put: PutDown) -> bool:
+            x, y, z = put.center
+            return self.own_side(side, y) and self.reachable(
+                side, [(np.array([x, y, HOVER]), put.closing_yaw), (np.array([x, y, z]), put.closing_yaw)]
+            )
+
+        choice = home_put_down(self.home_cells, self.others(block), held_yaw, YAW_CENTER[side], reached)
         if choice is None:
             raise NoRoom("no clear spot left on the home area")
         return choice.center, choice.closing_yaw
@@ -178,16 +226,16 @@ class Skills:
         self.robot.move(side, np.array([over[0], over[1], HOVER]), yaw)
         self.check_held(side, held)
         place = self.grip_target(held, np.asarray(center) + np.array([0.0, 0.0, 0.001]), yaw)
-        self.robot.move(side, place + np.array([0.0, 0.0, 0.02]), speed=SLOW)
+        self.vertical(side, place + np.array([0.0, 0.0, 0.02]))
         self.robot.move(side, place, speed=0.05)
         self.release(side, PLACE_OPENING)
         self.robot.move(side, place + np.array([0.0, 0.0, 0.02]), speed=0.05)
-        self.robot.move(side, np.array([place[0], place[1], HOVER]), speed=SLOW)
+        self.vertical(side, np.array([place[0], place[1], HOVER]))
 
     def park(self, side: str) -> None:
         """Go straight up to hover height, then to the park pose beside the table."""
         robot = self.robot
         here = robot.target[side]
         if here[2] < HOVER - 1e-6:
-            robot.move(side, np.array([here[0], here[1], HOVER]), speed=SLOW)
+            self.vertical(side, np.array([here[0], here[1], HOVER]))
         robot.move(side, np.array(PARK[side]), YAW_CENTER[side])

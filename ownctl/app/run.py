@@ -34,7 +34,8 @@ ARMS = ("auto", "left", "right")
 GRASPS = ("weld", "friction")
 
 
-def check_options(task: str, instructor: str, arm: str, grasp: str, render: str | None) -> None:
+def check_options(task: str, instructor: str, arm: str, grasp: str, render: str | None,
+                  camera: str = "front") -> None:
     """Refuse bad options before anything is loaded, shown or written (names the valid values)."""
     get_task(task)
     for what, value, valid in (("instructor", instructor, INSTRUCTORS), ("arm", arm, ARMS),
@@ -43,6 +44,9 @@ def check_options(task: str, instructor: str, arm: str, grasp: str, render: str 
             raise BadValue(f"unknown {what} {value!r}; valid: {', '.join(valid)}", valid)
     if render and not render.endswith((".png", ".mp4")):
         raise BadValue(f"--render must name a .png or .mp4 file, got {render!r}")
+    from sim.scene import check_camera
+
+    check_camera(camera)
     if render:
         from sim.gl import ensure_rendering
 
@@ -85,13 +89,14 @@ class RunReport:
 class PhysicsExecutor:
     """The task loop's executor backed by the MuJoCo Baxter (imported only when used)."""
 
-    def __init__(self, world: World, seed: int, arm: str, grasp: str, render: str | None) -> None:
+    def __init__(self, world: World, seed: int, arm: str, grasp: str, render: str | None,
+                 camera: str = "front") -> None:
         from sim.world import PhysicsWorld, SimArea, SimBlock
 
         blocks = [SimBlock(o.name, o.color, o.position) for o in world.objects]
         areas = [SimArea(a.name, a.box) for a in world.areas]
         video = render if render and render.endswith(".mp4") else None
-        self.world = PhysicsWorld(blocks, areas, seed=seed, arm=arm, grasp=grasp, render=video)
+        self.world = PhysicsWorld(blocks, areas, seed=seed, arm=arm, grasp=grasp, render=video, camera=camera)
         self.render = render
         self.failed: list[str] = []
 
@@ -222,11 +227,12 @@ def run(
     arm: str = "auto",
     grasp: str = "weld",
     render: str | None = None,
+    camera: str = "front",
     interrupts: Sequence[Interrupt] = (),
     on_step: Callable[[StepRecord], None] | None = None,
 ) -> RunReport:
     """Play ``task`` on the store's world; persist every object's attempt as it happens."""
-    check_options(task, instructor, arm, grasp, render)
+    check_options(task, instructor, arm, grasp, render, camera)
     chosen = get_task(task)
     fresh, empty = _new_world(ctx, seed, layout_seed)
     world = current_world(ctx) if fresh is None else _joined(current_world(ctx), fresh)
@@ -236,7 +242,7 @@ def run(
     # the scene is built (every block placed) before anything is written: a layout that cannot be
     # placed leaves the store as it was
     if physics:
-        executor: Any = PhysicsExecutor(world, seed, arm, grasp, render)
+        executor: Any = PhysicsExecutor(world, seed, arm, grasp, render, camera)
     else:
         from ownctl.experiment.kinematic import KinematicExecutor
 

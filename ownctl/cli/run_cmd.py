@@ -36,6 +36,7 @@ def run(
         str, typer.Option(metavar="weld|friction", help="weld (fingers close, then hold) or friction.")
     ] = "weld",
     render: Annotated[str | None, typer.Option(metavar="FILE", help="Write FILE.png or FILE.mp4.")] = None,
+    camera: Annotated[str, typer.Option(help="View to render: front, shoulder or top.")] = "front",
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
@@ -50,7 +51,7 @@ def run(
 
     from ownctl.app import run as runner
 
-    runner.check_options(task, instructor, arm, grasp, render)
+    runner.check_options(task, instructor, arm, grasp, render, camera)
     live_rows: list[Any] = []
     shown = not (json_out or quiet)
     grid = Table("object", "fate", "reason", "mistake", title=f"{task}", expand=False)
@@ -64,7 +65,8 @@ def run(
 
     def play() -> runner.RunReport:
         return runner.run(app_ctx(ctx), task, instructor=instructor, physics=physics, seed=seed,
-                          layout_seed=layout_seed, arm=arm, grasp=grasp, render=render, on_step=on_step)
+                          layout_seed=layout_seed, arm=arm, grasp=grasp, render=render, camera=camera,
+                          on_step=on_step)
 
     if shown:
         with Live(grid, console=console, refresh_per_second=8, transient=False):

@@ -130,5 +130,6 @@ def test_run_with_render_says_where_the_file_went(tmp_path: Path, rendering: str
     assert done.returncode == 0, done.stderr
     assert (tmp_path / "shot.png").stat().st_size > 1000
     assert "wrote" not in done.stderr  # --quiet prints nothing but errors
-    done = _ownctl(tmp_path, {}, "run", "trashAll", "--render", "again.png", "--json")
+    done = _ownctl(tmp_path, {}, "run", "trashAll", "--render", "again.png", "--camera", "shoulder", "--json")
     assert done.stderr.strip().splitlines()[-1] == "wrote again.png"
+    assert (tmp_path / "again.png").read_bytes() != (tmp_path / "shot.png").read_bytes()

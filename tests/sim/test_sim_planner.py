@@ -6,8 +6,11 @@ import numpy as np
 import pytest
 
 from sim import scene_config as cfg
+from sim.baxter import FINGER_THICK
 from sim.footprint import Rect, face_yaw, overlap
+from sim.layout import SPACING
 from sim.planner import (
+    DROP_OPENING,
     MAX_TOWER,
     BlockState,
     bin_cells,
@@ -19,6 +22,7 @@ from sim.planner import (
 
 H = cfg.BLOCK_HALF
 Z = cfg.REST_Z
+GAP = 2 * H + 0.004  # centres this far apart: the blocks do not touch, but no finger fits between
 
 
 def _block(i: int, x: float, y: float, z: float = Z, yaw: float = 0.0) -> BlockState:
@@ -54,11 +58,11 @@ def test_face_yaw_is_congruent_modulo_a_quarter_turn() -> None:
 
 def test_grasp_closes_across_the_free_axis() -> None:
     target = _block(0, 0.6, 0.0)
-    along_x = [_block(1, 0.6 + 0.012, 0.0)]  # a neighbour where a finger closing along x would go
-    along_y = [_block(1, 0.6, 0.012)]
+    along_x = [_block(1, 0.6 + GAP, 0.0)]  # a neighbour where a finger closing along x would go
+    along_y = [_block(1, 0.6, GAP)]
     assert _axis(grasp_yaw(target, along_x, [], 0.0)) == _axis(np.pi / 2)  # type: ignore[arg-type]
     assert _axis(grasp_yaw(target, along_y, [], 0.0)) == _axis(0.0)  # type: ignore[arg-type]
-    assert grasp_yaw(target, along_x + [_block(2, 0.6, -0.012)], [], 0.0) is None
+    assert grasp_yaw(target, along_x + [_block(2, 0.6, -GAP)], [], 0.0) is None
 
 
 def test_grasp_refuses_a_covered_block_and_accepts_a_lone_one() -> None:
@@ -69,8 +73,9 @@ def test_grasp_refuses_a_covered_block_and_accepts_a_lone_one() -> None:
 
 
 def test_home_put_down_picks_the_lowest_clear_tower() -> None:
-    cells = [(0.59, -0.01), (0.59, 0.01), (0.61, -0.01), (0.61, 0.01)]
-    blocks = [_block(i, x, y) for i, (x, y) in enumerate(cells[:3])] + [_block(3, 0.59, -0.01, Z + 2 * H)]
+    d = SPACING / 2
+    cells = [(0.6 - d, -d), (0.6 - d, d), (0.6 + d, -d), (0.6 + d, d)]
+    blocks = [_block(i, x, y) for i, (x, y) in enumerate(cells[:3])] + [_block(3, *cells[0], Z + 2 * H)]
     spot = home_put_down(cells, blocks, 0.0, 0.0)
     assert (
         spot is not None and spot.center[:2] == pytest.approx(cells[3]) and spot.center[2] == pytest.approx(Z)
@@ -89,17 +94,30 @@ def test_home_put_down_gives_up_when_towers_are_full() -> None:
 
 
 def test_bin_cells_keep_open_fingers_off_the_walls() -> None:
-    box = (0.546, 0.108, 0.636, 0.198)
-    cells = bin_cells(box)
+    box = (0.41, -0.2, 0.51, 0.2)
+    cells = bin_cells(box, SPACING)
     assert len(cells) >= 4
     walls = wall_rects(box)
+    reach = DROP_OPENING + FINGER_THICK
     for x, y in cells:
-        finger_reach = Rect((x, y), 0.0, (0.017, 0.017))
+        finger_reach = Rect((x, y), 0.0, (reach, reach))
         assert not any(overlap(finger_reach, w) for w in walls)
-    assert cells[0] == pytest.approx(((box[0] + box[2]) / 2, (box[1] + box[3]) / 2))
+    centre = ((box[0] + box[2]) / 2, (box[1] + box[3]) / 2)
+    distance = [float(np.hypot(x - centre[0], y - centre[1])) for x, y in cells]
+    assert distance == sorted(distance)  # centre first
+    assert min(np.hypot(a[0] - b[0], a[1] - b[1]) for a in cells for b in cells if a != b) >= SPACING - 1e-9
 
 
-def test_drop_point_prefers_the_emptiest_cell() -> None:
-    cells = [(0.6, 0.15), (0.62, 0.15)]
-    assert drop_point(cells, [])[:2] == cells[0]
-    assert drop_point(cells, [_block(0, 0.6, 0.15, Z + 0.003)])[:2] == cells[1]
+def test_drop_point_prefers_the_emptiest_usable_cell() -> None:
+    cells = [(0.6, 0.15), (0.6 + SPACING, 0.15), (0.6 + 2 * SPACING, 0.15)]
+    assert drop_point(cells, []) == (*cells[0], cfg.TABLE_TOP + cfg.BIN_FLOOR)
+    assert drop_point(cells, [_block(0, 0.6, 0.15, Z + 0.003)])[:2] == cells[2]  # type: ignore[index]
+    assert drop_point(cells, [], lambda spot: spot[0] > 0.65)[:2] == cells[1]  # type: ignore[index]
+    assert drop_point(cells, [], lambda spot: False) is None
+
+
+def test_home_put_down_skips_cells_the_arm_cannot_use() -> None:
+    cells = [(0.6, 0.0), (0.6, SPACING)]
+    spot = home_put_down(cells, [], 0.0, 0.0, lambda put: put.center[1] > 0.01)
+    assert spot is not None and spot.center[:2] == pytest.approx(cells[1])
+    assert home_put_down(cells, [], 0.0, 0.0, lambda put: False) is None
