@@ -1,36 +1,42 @@
-"""Initial block layout: the workspace map fitted to the areas, then a start spot for every block.
+"""Initial block layout: the workspace map fitted to the areas and blocks, then a start spot for
+every block, all computed before the scene is built.
 
 Every block starts axis-aligned (yaw 0) on the table, or on the bin floor when its position is in
 the trash area. Two blocks are far enough apart when their Chebyshev distance is at least
 ``SPACING``: then an opened gripper fits around either block along both face axes without touching
-the other. The placement is total: every block gets a spot, computed before anything is built.
+the other.
 
-- :func:`map_for` gives every area room for at least ``MIN_CELLS`` blocks side by side (the trash
-  area's bin with its walls), so small areas such as home are not crowded by the map.
+- :func:`map_for` gives every area room for a few blocks side by side (``ROOM``: home and the bin
+  much more), every crowded piece of the areas' arrangement room for its blocks, and the pieces
+  next to the bin room for the clearance blocks keep from its walls, as far as the reachable strip
+  allows; the areas' own room comes first.
 - Blocks in the home area go to the nearest free cell of the home grid (:func:`home_slots`, the
   cells collected blocks are stacked on), blocks in the trash area to the nearest free cell of the
   bin (:func:`sim.planner.bin_cells`, where trashed blocks are dropped); the other blocks go where the
-  map puts them. A spot that is taken (too close to an earlier block, a bin wall, or outside the
-  reachable strip) is replaced by the nearest free point on rings of growing radius inside exactly
-  the same areas, so ``inArea`` is unchanged; then by one where blocks merely do not touch; and
-  only when an area has no room at all is the block stacked on the lowest tower already inside the
-  same areas (a bin can hold more blocks in piles than on its floor).
+  map puts them. A spot that is taken (too close to an earlier block, a bin wall, a home cell, or
+  outside the reachable strip) is replaced by the nearest free spot inside exactly the same areas, so
+  ``inArea`` is unchanged: a push out of the neighbours' way, else the nearest free point of a 4 mm
+  grid over the strip; then the same where blocks merely do not touch; then with the walls and
+  home cells only not touched; and only when the areas have no room at all is the block stacked on
+  the lowest tower already inside the same areas (a bin holds more blocks in piles than on its floor).
 
-The result depends only on the input order and the seed.
+The result depends only on the input order and the seed; a layout never fails unless a block's
+areas are too small to hold any block and hold no block to stack it on.
 """
 
 from __future__ import annotations
 
 import functools
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
 
+from sim import baxter
 from sim import scene_config as cfg
 from sim.errors import LayoutError
-from sim.planner import BIN_REACH, bin_cells
+from sim.planner import BIN_REACH, MARGIN, bin_cells
 from sim.workspace import WORKSPACE_HALF, AxisMap, SimArea, SimBlock, WorkspaceMap, fit_axis
 
 Vec = NDArray[np.float64]
@@ -47,6 +53,14 @@ ROOM = {  # ... and these areas more: the strip is shallow, so they stretch acro
     "home": (1, 10),  # 10 cells, 3-block towers: room for twenty collected blocks, either arm reaching 6
     "trash": (1, 9),  # 9 drop cells in the bin, piles at most three high: room for twenty trashed blocks
 }
+LANE = H + baxter.FINGER_WIDTH + MARGIN  # a block this far across a closing axis leaves the fingers free
+PASSES = (  # (spacing, relaxed rules, every block must keep a grasp), tried in turn
+    (SPACING, False, False),
+    (TIGHT_SPACING, False, True),
+    (TIGHT_SPACING, True, True),
+    (TIGHT_SPACING, True, False),
+)
+GRID_CHOICES = 400  # the nearest free grid points tried for a spot
 CROWD_SHARES = (1.0, 0.8, 0.6, 0.4, 0.2, 0.0)
 GRID_STEP = 0.004  # resolution of the search for a free spot when the wanted one and its pushes are taken
 
@@ -188,6 +202,14 @@ def _search_grid() -> tuple[Vec, Vec, Vec]:
 _STEPS = np.array([[1, 0], [-1, 0], [0, 1], [0, -1], [1, 1], [1, -1], [-1, 1], [-1, -1]], dtype=float)
 
 
+def _has_lanes(xy: Vec, others: Vec) -> bool:
+    """Whether fingers closing along x or along y at ``xy`` meet none of the blocks at ``others``
+    (the block at ``xy`` itself, if among them, is ignored)."""
+    d = np.abs(others - xy)
+    d = d[np.max(d, axis=1) > 1e-9]
+    return any(not np.any((d[:, axis] < SPACING - 1e-9) & (d[:, 1 - axis] < LANE)) for axis in (0, 1))
+
+
 def _far(pts: Vec, others: Vec, spacing: float) -> NDArray[np.bool_]:
     """Which points of ``pts`` (n, 2) are at least ``spacing`` (Chebyshev) from every point of ``others``."""
     if not len(others):
@@ -272,10 +294,9 @@ class _Layout:
         """Grid points closer than ``gap`` (Chebyshev) to ``xy``, as an (x, y) table."""
         return np.outer(np.abs(self.gx - xy[0]) < gap - 1e-9, np.abs(self.gy - xy[1]) < gap - 1e-9)
 
-    def nearest_on_grid(self, want: Vec, areas: NDArray[np.bool_], spacing: float,
-                        relaxed: bool) -> Vec | None:
-        """The grid point nearest ``want`` that obeys the :meth:`rules` and is ``spacing`` from every
-        block (the grid covers the reachable strip), or None."""
+    def on_grid(self, want: Vec, areas: NDArray[np.bool_], spacing: float, relaxed: bool) -> Vec:
+        """The grid points that obey the :meth:`rules` and are ``spacing`` from every block (the grid
+        covers the reachable strip), nearest ``want`` first (at most ``GRID_CHOICES``)."""
         key = (areas.tobytes(), relaxed)
         if key not in self._static:
             boxes, reserved = self.rules(areas, relaxed)
@@ -286,31 +307,43 @@ class _Layout:
             for cell in reserved:
                 ok &= ~self._near_on_grid(cell, RESERVE)
             self._static[key] = ok.ravel()
-        ok = self._static[key] & ~self.taken[spacing].ravel()
-        if not ok.any():
-            return None
-        pts = self.grid[ok]
-        return pts[np.argmin(np.linalg.norm(pts - want, axis=1))]
+        pts = self.grid[self._static[key] & ~self.taken[spacing].ravel()]
+        distance = np.linalg.norm(pts - want, axis=1)
+        nearest = np.argpartition(distance, GRID_CHOICES)[:GRID_CHOICES] if len(pts) > GRID_CHOICES else None
+        if nearest is not None:
+            pts, distance = pts[nearest], distance[nearest]
+        return pts[np.argsort(distance, kind="stable")]
+
+    def candidates(self, want: Vec, areas: NDArray[np.bool_], cells: Vec | None, spacing: float,
+                   relaxed: bool) -> Iterator[Vec]:
+        """Free spots for a block wanted at ``want``, in order of preference: its area's free cells
+        (nearest first), the point itself and its pushes out of the neighbours' way, the grid."""
+        if cells is not None and len(cells):
+            free = cells[self.free(cells, areas, spacing, relaxed)]
+            yield from free[np.argsort(np.linalg.norm(free - want, axis=1), kind="stable")]
+        pushed = self.pushed(want, spacing)
+        yield from pushed[self.free(pushed, areas, spacing, relaxed)]
+        yield from self.on_grid(want, areas, spacing, relaxed)
+
+    def keeps_a_grasp(self, xy: Vec) -> bool:
+        """Whether a block at ``xy`` leaves itself and every block near it a free pair of finger lanes
+        (along one face axis), as it always does at ``SPACING``."""
+        near = self.xy[np.max(np.abs(self.xy - xy), axis=1) < SPACING - 1e-9]
+        if not len(near):
+            return True
+        with_new = np.vstack([self.xy, xy[None, :]])
+        return _has_lanes(xy, near) and all(_has_lanes(q, with_new) for q in near)
 
     def nearest_free(self, want: Vec, areas: NDArray[np.bool_], cells: Vec | None) -> Vec | None:
-        """The free spot for a block wanted at ``want``: a free cell, the point itself or a push of it out
-        of its neighbours' way, or the nearest free grid point; with ``SPACING``, else ``TIGHT_SPACING``,
-        else ``TIGHT_SPACING`` under relaxed :meth:`rules`."""
+        """The free spot for a block wanted at ``want`` (see :meth:`candidates`): with ``SPACING``;
+        else with ``TIGHT_SPACING`` where every block keeps a grasp; else under relaxed :meth:`rules`;
+        else anywhere the blocks do not touch."""
         if (cells is None or not len(cells)) and self.point_free(want, areas):
             return want
-        for spacing, relaxed in ((SPACING, False), (TIGHT_SPACING, False), (TIGHT_SPACING, True)):
-            if cells is not None and len(cells):
-                ok = self.free(cells, areas, spacing, relaxed)
-                if ok.any():
-                    choice = cells[ok]
-                    return choice[np.argmin(np.linalg.norm(choice - want, axis=1))]
-            pushed = self.pushed(want, spacing)
-            ok = self.free(pushed, areas, spacing, relaxed)
-            if ok.any():
-                return pushed[np.flatnonzero(ok)[0]]
-            got = self.nearest_on_grid(want, areas, spacing, relaxed)
-            if got is not None:
-                return got
+        for spacing, relaxed, grasp in PASSES:
+            for xy in self.candidates(want, areas, cells, spacing, relaxed):
+                if not grasp or self.keeps_a_grasp(xy):
+                    return xy
         return None
 
     def pushed(self, want: Vec, spacing: float) -> Vec:

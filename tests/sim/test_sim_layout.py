@@ -69,10 +69,14 @@ def test_a_thousand_layout_seeds_place_twenty_graspable_blocks_within_ten_second
 
 @pytest.mark.slow
 def test_layouts_of_the_tour_store_always_place_apart() -> None:
-    """The tour's desk cuts home in four: blocks still all fit, none stacked, none touching."""
+    """The tour's desk cuts home in four and squeezes the strip: blocks still all fit, none stacked,
+    none touching, and all but a handful keep a grasp (over seeds 0-999, 2 blocks of one seed do not)."""
+    ungraspable = 0
     for seed in range(300):
         blocks, xyz, wmap = _layout(seed, TOUR)
         _check_placed(xyz, blocks, wmap, TOUR, TIGHT_SPACING)
+        ungraspable += len(_ungraspable(xyz, wall_rects(wmap.box_to_world(TOUR["trash"].box))))  # type: ignore[attr-defined]
+    assert ungraspable <= 2
 
 
 def test_the_layout_that_used_to_fail_places() -> None:

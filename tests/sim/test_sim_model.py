@@ -10,7 +10,7 @@ import pytest
 
 from sim import baxter
 from sim import scene_config as cfg
-from sim.layout import MIN_CELLS, SPACING, home_slots, map_for, place_blocks
+from sim.layout import ROOM, SPACING, home_slots, map_for, place_blocks
 from sim.workspace import DEFAULT_TRASH, SimArea, SimBlock, with_default_areas
 from sim.world import PhysicsWorld
 
@@ -107,7 +107,7 @@ def test_layout_keeps_blocks_apart_and_in_the_same_areas() -> None:
 def test_home_blocks_sit_on_the_home_grid() -> None:
     world = PhysicsWorld([SimBlock("a", None, (0.01, 0.02, 0)), SimBlock("b", None, (0.05, -0.05, 0))], [])
     cells = home_slots(world.home_box)
-    assert len(cells) >= MIN_CELLS[0] * MIN_CELLS[1]
+    assert len(cells) >= ROOM["home"][0] * ROOM["home"][1]
     for name in ("a", "b"):
         x, y, _ = world.world_position(name)
         assert min(np.hypot(x - cx, y - cy) for cx, cy in cells) < 1e-3
