@@ -15,17 +15,12 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ownctl.mind.core import BASE_RATE
+from ownctl.ownership.predict import calibrated_base_rate
+
 if TYPE_CHECKING:
     from ownctl.mind import Mind
 
-#: A stored prior of NULL (a store from before priors were always written) reads as the base rate.
-BASE_RATE_SOURCE = "base-rate"
-
-
-def _base_rate() -> float:
-    from ownctl.config import PredictConfig
-
-    return PredictConfig().base_rate
 
 
 def decision_belief(row: Any) -> tuple[float, str]:
@@ -41,7 +36,7 @@ def induction_belief(row: Any) -> tuple[float, str]:
         return row.claim_p, "claim"
     if row.prior_p is not None:
         return row.prior_p, row.prior_source or "prediction"
-    return _base_rate(), BASE_RATE_SOURCE
+    return calibrated_base_rate(), BASE_RATE  # a NULL prior (an older store) reads as the base rate
 
 
 def belief_sources(mind: Mind, i: int) -> list[str]:

@@ -44,7 +44,7 @@ from ownctl.logic.rules import Norm, Rule
 from ownctl.logic.vocab import ACTIONS
 from ownctl.ownership.features import agent_features
 from ownctl.ownership.infer import posterior
-from ownctl.ownership.predict import KernelOwnershipModel
+from ownctl.ownership.predict import KernelOwnershipModel, calibrated_base_rate
 from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
 
 #: A permission value at or above this forbids its step (also the learner's cover threshold).
@@ -174,7 +174,7 @@ class Mind:
         self._changed()
 
     def _base_rate(self) -> float:
-        return float(KernelOwnershipModel(self.settings.predict).fit(np.zeros((0, 0)), np.zeros(0)).base_)
+        return calibrated_base_rate(self.settings.predict)
 
     @property
     def vocab(self) -> Vocabulary:
@@ -405,8 +405,7 @@ class Mind:
         self.objects[i] = spec
         self._frame = None
         stale = self.agents if self.vocab.colors != palette else self._claimed_agents()
-        self._stale_agents(stale)
-        self._changed()
+        self._stale_agents(stale)  # also forgets what the old percepts implied
 
     def move(self, obj: int | str, position: Position | None) -> None:
         """The object is now at ``position``."""

@@ -44,6 +44,11 @@ def _off_half(value: float) -> float:
     return value if abs(value - 0.5) > 1e-3 else 0.5 - 1e-3
 
 
+def calibrated_base_rate(cfg: PredictConfig | None = None) -> float:
+    """The prior of an agent without claims: what a model fitted on no claims predicts everywhere."""
+    return KernelOwnershipModel(cfg).prior_(np.zeros(0))
+
+
 class KernelOwnershipModel:
     """Kernel logistic regression of P(ownedBy(object, agent)) on one agent's percept features."""
 
