@@ -326,8 +326,8 @@ class Stored:
                 if self.writable is not None:
                     differs &= self.writable[i]
                 parts["posterior"].append(i * m + np.flatnonzero(differs))
-            cells = {k: np.unique(np.concatenate(v)) if v else np.zeros(0, dtype=int)
-                     for k, v in parts.items()}
+            # distinct already: each part is one column's cells, or one object's
+            cells = {k: np.concatenate(v) if v else np.zeros(0, dtype=int) for k, v in parts.items()}
         moved = [mind.index[name] * m + mind.agents.index(agent)
                  for name, agent in {**base.claim_info, **mind.claim_info}
                  if mind.claim_info.get((name, agent)) != base.claim_info.get((name, agent))
@@ -343,16 +343,16 @@ class Stored:
         mind = self.mind
         m = len(mind.agents)
         cells = self._changed_cells(base, post, edited)
-        every = np.unique(np.concatenate([cells[k] for k in KIND_COLUMNS]))
-        fresh_rows = np.array(sorted(mind.index[name] for name in fresh), dtype=int)
-        if len(fresh_rows):  # every (fresh object, agent) pair gets its row, changed or not
-            every = np.union1d(every, (fresh_rows[:, None] * m + np.arange(m)[None, :]).ravel())
+        flat = np.zeros(len(mind.objects) * m, dtype=np.int8)  # per cell: which kinds changed (bits)
+        for bit, kind in enumerate(KIND_COLUMNS):
+            flat[cells[kind]] |= np.int8(1 << bit)
+        new_row = np.zeros(len(mind.objects), dtype=bool)
+        new_row[[mind.index[name] for name in fresh]] = True
+        flat[np.repeat(new_row, m)] |= np.int8(8)  # every (fresh object, agent) pair gets its row
+        every = np.flatnonzero(flat)
         if not len(every):
             return
-        code = np.zeros(len(every), dtype=int)
-        for bit, kind in enumerate(KIND_COLUMNS):
-            code |= np.isin(every, cells[kind]).astype(int) << bit
-        inserted = np.isin(every // m, fresh_rows)
+        code, inserted = flat[every] & 7, new_row[every // m]
         row_ids = self._ids_of_rows()
         agent_ids = np.array([self.agent_ids[a] for a in mind.agents], dtype=np.int64)
         for c in np.unique(code):
@@ -387,7 +387,7 @@ class Stored:
             values["claim_time"] = [None if g is None else g.time for g in metas]
         if "prior" in kinds:
             values["prior_p"] = mind.predicted[i, j].tolist()
-            values["prior_source"] = [str(v) for v in mind.prior_source[i, j].tolist()]
+            values["prior_source"] = mind.prior_source[i, j].tolist()  # str already
             values["prior_time"] = [now] * len(rows)
         if "posterior" in kinds:
             by_row = {mind.index[name]: row for name, row in post.items()}

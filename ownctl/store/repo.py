@@ -421,8 +421,9 @@ class Beliefs(_Part):
             return
         columns = ("agent_id", "object_id", *values)
         order = sorted(range(len(object_ids)), key=lambda k: (agent_ids[k], object_ids[k]))  # key order
-        bulk_insert(self.session, "ownership", columns,
-                    ((agent_ids[k], object_ids[k], *(values[c][k] for c in values)) for k in order))
+        data = [agent_ids, object_ids, *values.values()]
+        rows = zip(*([c[k] for k in order] for c in data), strict=True)
+        bulk_insert(self.session, "ownership", columns, rows)
 
 
 class Knowledge(_Part):
