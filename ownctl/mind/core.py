@@ -279,7 +279,8 @@ class Mind:
         self.refresh()
         idx = np.asarray(rows, dtype=int)
         claims = self.claims[idx]
-        return np.where(np.isnan(claims), self.predicted[idx], claims)
+        out: np.ndarray = np.where(np.isnan(claims), self.predicted[idx], claims)
+        return out
 
     def refresh(self) -> None:
         """Refit the predictors made stale by claims, touches or percepts (predictions are a pure

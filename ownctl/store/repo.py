@@ -8,7 +8,7 @@ Beliefs about many (object, agent) pairs are written with one bulk UPDATE by pri
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from itertools import islice
 from typing import Any, cast
@@ -76,7 +76,7 @@ def bulk_insert(session: Session, table: str, columns: Sequence[str], rows: Iter
 
 
 def bulk_update(session: Session, table: str, keys: Sequence[str], columns: Sequence[str],
-                values: dict[str, Sequence[Any]]) -> None:
+                values: Mapping[str, Sequence[Any]]) -> None:
     """``UPDATE table SET columns... WHERE keys...`` for many rows with one statement: an
     executemany on SQLite, one ``UPDATE ... FROM unnest(arrays)`` on PostgreSQL. ``values`` maps
     every key and column to a list, one entry per row."""
@@ -404,7 +404,7 @@ class Beliefs(_Part):
                                 {c: [r[c] for r in group] for c in columns})
 
     def update_beliefs(self, object_ids: Sequence[int], agent_ids: Sequence[int],
-                       values: dict[str, Sequence[Any]]) -> None:
+                       values: Mapping[str, Sequence[Any]]) -> None:
         """Set the columns in ``values`` (column -> one value per row) of the ownership rows
         (object_ids[k], agent_ids[k]), with one bulk statement (:func:`bulk_update`)."""
         if not len(object_ids):
@@ -415,7 +415,7 @@ class Beliefs(_Part):
         self._expire(Ownership)
 
     def insert_beliefs(self, object_ids: Sequence[int], agent_ids: Sequence[int],
-                       values: dict[str, Sequence[Any]]) -> None:
+                       values: Mapping[str, Sequence[Any]]) -> None:
         """New ownership rows (object_ids[k], agent_ids[k]) with the columns in ``values``, at once."""
         if not len(object_ids):
             return
