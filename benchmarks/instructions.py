@@ -1,27 +1,38 @@
-"""Benchmark: end-to-end latency of one instruction, in-process, on one open store.
+"""Benchmark: loading a world and the latency of one instruction through the Python API.
 
-    python benchmarks/instructions.py [--quick] [--sizes 20,1000,10000] [--repeats 100] [--json]
-                                      [--profile slowest|both|none]
+    python benchmarks/instructions.py [--objects N] [--agents K] [--sizes 20,1000,10000]
+                                      [--backend sqlite|postgresql] [--url URL] [--repeats 100]
+                                      [--seed 0] [--profile slowest|all|none] [--json] [--quick]
 
-A long-running robot process keeps one :class:`~ownctl.app.context.AppContext` open (as
-``ownctl batch`` does) and calls the app functions for each instruction it hears. This measures,
-on a temporary SQLite file, the wall time of
+A robot's control loop keeps one :class:`ownctl.api.Ownctl` open and calls it for every
+instruction it hears and every decision it makes; the Ownctl keeps the loaded Mind between calls
+while no other process writes (``docs/architecture.md``, section 6). For each size this
 
-* ``forbid ACTION on OBJ`` (:func:`ownctl.app.instruct.add_permission`): store read, conflict gate,
-  rule induction, ownership inference, store write, event log;
-* ``claim OBJ AGENT`` (:func:`ownctl.app.instruct.add_claim`): prediction refit and bulk prior write
-  for that agent, inference, store write, event log;
+* creates an empty store (a temporary SQLite file, or a temporary database on the PostgreSQL
+  server of ``--url`` / ``OWNCTL_TEST_PG`` with ``--backend postgresql``);
+* times ``Ownctl.load_world`` of a world file whose ``[generator]`` section draws the paper's
+  blocks world with that many objects and ``--agents`` agents (what ``ownctl world load FILE``
+  does: the objects, their percepts and every agent's touches, the beliefs, the ground truth);
+* states the world's true norms (``forbid ACTION if ...``; ``--norms learned``: no norms, rules
+  are induced from the permissions), gives untimed warm-up instructions, then times ``--repeats``
+  of each operation, interleaved as an
+  instructor would give them: ``permit`` (forbid/allow ACTION on a random object with the true
+  answer of the paper's norms), ``claim`` (the true owner of a random object, or "not mine" for an
+  unowned one) and ``check`` (a random action on a random object, without recording the turn).
 
-on the paper's world (20 objects, 3 agents, ``scenarios/paper-blocks.toml``) and on generated blocks
-worlds of 1,000 and 10,000 objects with 10 agents. Instructions alternate, as an instructor would
-give them: permissions on random objects with the true answer of the paper's norms (for trash,
-pickUp and collect), claims of the true owner (or "not mine" for an unowned object). A warm-up of
-untimed instructions comes first, so the store already holds claims, permissions and rules.
+Sizes: ``--sizes`` (default 20, 1,000 and 10,000), up to and including ``--objects`` when given
+(``--objects 100000`` reports 20 / 1,000 / 10,000 / 100,000). Without ``--agents`` the 20-object
+world is the paper's file (3 agents) and larger ones have 10 agents; with it, every size has that
+many. It prints median and p90 per size and operation, the load time, the growth exponent of each
+operation's median (least-squares slope of log median on log objects over the sizes of 1,000 and
+more), and pass/fail against the targets: at 100,000 objects loading at most 30 s, a claim at most
+200 ms, a permission and a check at most 20 ms (medians). The machine's load average is printed
+with the figures, since other processes change them. ``--profile`` adds a cProfile of the slowest
+operation (or of each) at each size, on extra instructions after the timed ones.
 
-Prints median and p90 per size and operation with the targets and the original research code's
-figures (which used no database), then a cProfile (top 15 by cumulative time, overall and for
-ownctl's own functions) of the slowest operation at each size, measured on extra instructions after
-the timed ones.
+A check that a learned rule decides also reports how sure the posterior over rule sets is of that
+rule (``rule_support``); computing that posterior dominates such a check (``--norms learned``
+shows it), whatever the store.
 """
 
 from __future__ import annotations
@@ -36,8 +47,10 @@ import pstats
 import sys
 import tempfile
 import time
-from collections.abc import Callable
-from dataclasses import dataclass
+import uuid
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
@@ -45,72 +58,107 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
-from ownctl.app import instruct  # noqa: E402
+from ownctl.api import Ownctl  # noqa: E402
 from ownctl.app.context import AppContext  # noqa: E402
-from ownctl.app.worldfile import read_world, store_world  # noqa: E402
+from ownctl.app.worldfile import read_world  # noqa: E402
 from ownctl.experiment.truth import true_rules  # noqa: E402
 from ownctl.logic.prob import p_forbidden  # noqa: E402
-from ownctl.world.generator import paper_blocks_world  # noqa: E402
+from ownctl.world.generator import PAPER_AREAS, PAPER_NORMS  # noqa: E402
 from ownctl.world.model import World, make_frame  # noqa: E402
 
-# (objects, op) -> target ms (median), from the project brief
-TARGETS = {(20, "permission"): 5.0, (20, "claim"): 5.0, (1000, "permission"): 10.0, (1000, "claim"): 100.0}
-# the original research code's own timings (no database)
-ORIGINAL = {(20, "permission"): 0.66, (20, "claim"): 13.0, (1000, "permission"): 6.8, (1000, "claim"): 7300.0}
-TEN_AGENTS = tuple(f"agent{i}" for i in range(1, 11))
+OPS = ("permit", "claim", "check")
+#: (objects, op) -> target (median ms; "load": seconds)
+TARGETS = {(20, "permit"): 5.0, (20, "claim"): 5.0, (1000, "permit"): 10.0, (1000, "claim"): 100.0,
+           (100_000, "load"): 30.0, (100_000, "claim"): 200.0, (100_000, "permit"): 20.0,
+           (100_000, "check"): 20.0}
+LADDER = (20, 1000, 10_000)
 START = 1_000_000.0  # the store clock at the start (seconds)
+ACTIONS = ("trash", "pickUp", "collect")
+
+
+def world_file(folder: str, n: int, agents: int | None) -> str:
+    """A world file for ``n`` objects: the paper's (20, default agents), else a generated one."""
+    if n == 20 and agents is None:
+        return str(ROOT / "scenarios" / "paper-blocks.toml")
+    k = agents or 10
+    names = ", ".join(f'"agent{i}"' for i in range(1, k + 1))
+    norms = ", ".join(f'"{t}"' for t in PAPER_NORMS)
+    areas = "".join(f'\n[[areas]]\nname = "{a.name}"\nbox = {list(a.box)}\n' for a in PAPER_AREAS)
+    path = os.path.join(folder, f"world-{n}-{k}.toml")
+    Path(path).write_text(f'name = "blocks {n}"\nagents = [{names}]\nnorms = [{norms}]\n{areas}\n'
+                          f'[generator]\nkind = "paper-blocks"\nobjects = {n}\n', encoding="utf-8")
+    return path
+
+
+@contextmanager
+def store_url(backend: str, folder: str, n: int, server: str | None) -> Iterator[str]:
+    """A fresh empty store for one size: a SQLite file, or a new PostgreSQL database (dropped after)."""
+    if backend == "sqlite":
+        yield os.path.join(folder, f"bench-{n}.db")
+        return
+    from sqlalchemy import create_engine, text
+    from sqlalchemy.exc import DBAPIError
+
+    if not server:
+        raise SystemExit("--backend postgresql needs --url or OWNCTL_TEST_PG (a server URL whose user "
+                         "may create databases)")
+    name = f"ownctl_bench_{uuid.uuid4().hex[:10]}"
+    admin = create_engine(server, isolation_level="AUTOCOMMIT")
+    with admin.connect() as conn:
+        conn.execute(text(f'CREATE DATABASE "{name}"'))
+    try:
+        yield f"{server.rsplit('/', 1)[0]}/{name}"
+    finally:
+        try:
+            with admin.connect() as conn:
+                conn.execute(text(f'DROP DATABASE IF EXISTS "{name}" WITH (FORCE)'))
+        except DBAPIError as exc:  # e.g. autovacuum still works on it: leave it, say so
+            print(f"could not drop database {name}: {str(exc.orig).splitlines()[0]}", file=sys.stderr)
+        admin.dispose()
 
 
 @dataclass
 class Bench:
-    """One store holding one world, and the instructor's answers about it."""
+    """One open store holding one world, and the instructor's answers about it."""
 
     world: World
-    ctx: AppContext
+    api: Ownctl
+    clock: list[float]
     answers: dict[str, np.ndarray]  # action -> true forbid value per object
     truth: np.ndarray  # (n, m) true ownership
     rng: np.random.Generator
     inductions: int = 0
+    decisions: dict[str, int] = field(default_factory=dict)
 
-    def permission(self) -> None:
+    def _object(self) -> int:
+        self.clock[0] += 1.0
+        return int(self.rng.integers(len(self.world.objects)))
+
+    def permit(self) -> None:
         """``forbid|allow ACTION on OBJ`` with the true answer, on a random object and action."""
         action = str(self.rng.choice(sorted(self.answers)))
-        i = int(self.rng.integers(len(self.world.objects)))
-        self.ctx.now += 1.0
-        done = instruct.add_permission(self.ctx, action, self.world.objects[i].name,
-                                       float(self.answers[action][i]))
+        i = self._object()
+        forbid = bool(self.answers[action][i] >= 0.5)
+        done = self.api.permit(action, self.world.objects[i].name, forbid=forbid)
         self.inductions += bool(done.data["induced"])
 
     def claim(self) -> None:
         """``claim OBJ OWNER`` for an owned object, ``claim OBJ AGENT --not`` for an unowned one."""
-        i = int(self.rng.integers(len(self.world.objects)))
+        i = self._object()
         owners = np.flatnonzero(self.truth[i] >= 0.5)
-        self.ctx.now += 1.0
+        name = self.world.objects[i].name
         if len(owners):
-            instruct.add_claim(self.ctx, self.world.objects[i].name, self.world.agents[int(owners[0])])
+            self.api.claim(name, self.world.agents[int(owners[0])])
         else:
             agent = self.world.agents[int(self.rng.integers(len(self.world.agents)))]
-            instruct.add_claim(self.ctx, self.world.objects[i].name, agent, negated=True)
+            self.api.claim(name, agent, negated=True)
 
-
-def make_world(n: int, seed: int) -> World:
-    """The paper's world from its scenario file (20 objects), else a generated one with 10 agents."""
-    if n == 20:
-        return read_world(str(ROOT / "scenarios" / "paper-blocks.toml"), seed)
-    return paper_blocks_world(np.random.default_rng(seed), n, agents=TEN_AGENTS)
-
-
-def open_bench(n: int, folder: str, seed: int) -> Bench:
-    """A fresh SQLite store in ``folder`` holding the world of size ``n``."""
-    world = make_world(n, seed)
-    ctx = AppContext(os.path.join(folder, f"bench-{n}.db"), now=START, interface="bench")
-    ctx.store(create=True)
-    with ctx.write({"op": "world.load", "world": world.name, "seed": seed}) as tx:
-        store_world(tx, world, ctx.now)
-    truth = world.true_ownership()
-    frame = make_frame(world.objects, world.areas, world.agents, truth)
-    answers = {a: p_forbidden(r, frame) for a, r in true_rules(world).items()}
-    return Bench(world, ctx, answers, truth, np.random.default_rng(seed + 1))
+    def check(self) -> None:
+        """``check ACTION OBJ`` on a random object (not recorded as a turn of the conversation)."""
+        action = str(self.rng.choice(ACTIONS))
+        report = self.api.check(action, self.world.objects[self._object()].name, record=False)
+        by = report.data["decided_by"]
+        self.decisions[by] = self.decisions.get(by, 0) + 1
 
 
 def timed(fn: Callable[[], None]) -> float:
@@ -121,8 +169,7 @@ def timed(fn: Callable[[], None]) -> float:
 
 
 def profile(fn: Callable[[], None], count: int, top: int = 15) -> str:
-    """cProfile of ``count`` calls: the top ``top`` functions by cumulative time, then the same for
-    ownctl's own functions only (the SQLAlchemy internals otherwise fill the list)."""
+    """cProfile of ``count`` calls: the top ``top`` functions by cumulative time, then ownctl's own."""
     prof = cProfile.Profile()
     prof.enable()
     for _ in range(count):
@@ -136,36 +183,84 @@ def profile(fn: Callable[[], None], count: int, top: int = 15) -> str:
     return "\n".join(line for line in out.getvalue().splitlines() if line.strip()) + "\n"
 
 
-def run_size(n: int, repeats: int, warmup: int, folder: str, seed: int, with_profile: str) -> dict:
-    """Set up one store, warm it up, time ``repeats`` of each op (interleaved), profile the slowest."""
-    t0 = time.perf_counter()
-    bench = open_bench(n, folder, seed)
-    setup = time.perf_counter() - t0
-    ops = {"permission": bench.permission, "claim": bench.claim}
-    for _ in range(warmup):
-        bench.claim()
-        bench.permission()
-    bench.inductions = 0
-    times: dict[str, list[float]] = {op: [] for op in ops}
-    for _ in range(repeats):
-        for op, fn in ops.items():
-            times[op].append(timed(fn))
-    rows = []
-    for op, ms in times.items():
-        arr = np.array(ms)
-        rows.append({
-            "objects": n, "agents": len(bench.world.agents), "op": op, "count": len(arr),
-            "median_ms": float(np.median(arr)), "p90_ms": float(np.percentile(arr, 90)),
-            "target_ms": TARGETS.get((n, op)), "original_ms": ORIGINAL.get((n, op)),
-        })
-    slowest = max(rows, key=lambda r: r["median_ms"])["op"]
-    profiled = list(ops) if with_profile == "both" else [slowest] if with_profile == "slowest" else []
-    reports = {op: profile(ops[op], max(5, min(20, repeats // 5))) for op in profiled}
-    with bench.ctx.read() as tx:
-        rules = [r.text for r in tx.knowledge.rules()]
-    bench.ctx.close()
-    return {"rows": rows, "setup_seconds": setup, "inductions": bench.inductions, "rules": rules,
-            "slowest": slowest, "profiles": reports}
+def run_size(n: int, args: argparse.Namespace, folder: str) -> dict:
+    """Load one world into a fresh store, warm up, time each op (interleaved), profile."""
+    path = world_file(folder, n, args.agents)
+    world = read_world(path, args.seed)
+    truth = world.true_ownership()
+    frame = make_frame(world.objects, world.areas, world.agents, truth)
+    answers = {a: p_forbidden(r, frame) for a, r in true_rules(world).items()}
+    with store_url(args.backend, folder, n, args.url) as url:
+        clock = [START]
+        api = Ownctl.open(url, create=True, clock=lambda: clock[0])
+        try:
+            t0 = time.perf_counter()
+            api.load_world(path, args.seed)
+            load_seconds = time.perf_counter() - t0
+            print(f"{n} objects: loaded in {load_seconds:.1f} s", file=sys.stderr, flush=True)
+            bench = Bench(world, api, clock, answers, truth, np.random.default_rng(args.seed + 1))
+            ops = {op: getattr(bench, op) for op in OPS}
+            t0 = time.perf_counter()
+            if args.norms == "stated":
+                for norm in world.norms:
+                    api.forbid(*norm.split(" ", 2)[1:])
+            for _ in range(args.warmup):
+                for fn in ops.values():
+                    fn()
+            warm_seconds = time.perf_counter() - t0
+            bench.inductions = 0
+            times: dict[str, list[float]] = {op: [] for op in ops}
+            for _ in range(args.repeats):
+                for op, fn in ops.items():
+                    times[op].append(timed(fn))
+            print(f"{n} objects: timed {args.repeats} of each op", file=sys.stderr, flush=True)
+            rows = [{"objects": n, "agents": len(world.agents), "op": op, "count": len(ms),
+                     "median_ms": float(np.median(ms)), "p90_ms": float(np.percentile(ms, 90)),
+                     "target_ms": TARGETS.get((n, op))} for op, ms in times.items()]
+            slowest = max(rows, key=lambda r: r["median_ms"])["op"]
+            chosen = list(ops) if args.profile == "all" else [slowest] if args.profile == "slowest" else []
+            reports = {op: profile(ops[op], max(5, min(20, args.repeats // 5))) for op in chosen}
+        finally:
+            api.close()
+        reader = AppContext(url, now=clock[0])
+        try:  # the rule texts only (``rules list`` would also compute each rule's posterior)
+            with reader.read() as tx:
+                rules = [r.text for r in tx.knowledge.rules()]
+        finally:
+            reader.close()
+    return {"objects": n, "agents": len(world.agents), "rows": rows, "load_seconds": load_seconds,
+            "load_target_s": TARGETS.get((n, "load")), "warmup_seconds": warm_seconds,
+            "inductions": bench.inductions, "decided_by": bench.decisions, "rules": rules,
+            "profiles": reports}
+
+
+def growth(results: list[dict]) -> dict[str, float | None]:
+    """op -> slope of log(median) on log(objects) over the sizes of 1,000 objects and more."""
+    out: dict[str, float | None] = {}
+    for op in OPS:
+        pts = [(r["objects"], row["median_ms"]) for r in results for row in r["rows"]
+               if row["op"] == op and r["objects"] >= 1000]
+        if len(pts) < 2:
+            out[op] = None
+            continue
+        x, y = np.log([p[0] for p in pts]), np.log([p[1] for p in pts])
+        out[op] = float(np.polyfit(x, y, 1)[0])
+    return out
+
+
+def verdicts(results: list[dict]) -> list[tuple[str, float, float, bool]]:
+    """(what, measured, target, passed) for every target a measured size has."""
+    out = []
+    for res in results:
+        n = res["objects"]
+        if res["load_target_s"] is not None:
+            out.append((f"load {n} objects (s)", res["load_seconds"], res["load_target_s"],
+                        res["load_seconds"] <= res["load_target_s"]))
+        for row in res["rows"]:
+            if row["target_ms"] is not None:
+                out.append((f"{row['op']} at {n} objects (median ms)", row["median_ms"], row["target_ms"],
+                            row["median_ms"] <= row["target_ms"]))
+    return out
 
 
 def fmt(value: float | None) -> str:
@@ -175,43 +270,65 @@ def fmt(value: float | None) -> str:
     return f"{value:.3g}" if value < 100 else f"{value:.0f}"
 
 
+def sizes_of(args: argparse.Namespace) -> list[int]:
+    """The object counts to measure: ``--sizes``, then the ladder up to ``--objects``."""
+    sizes = [int(s) for s in args.sizes.split(",") if s]
+    if args.objects is not None:
+        sizes = sorted({*(s for s in (*sizes, *LADDER) if s < args.objects), args.objects})
+    return sizes
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
-    parser.add_argument("--quick", action="store_true", help="a short run (fewer instructions per size)")
-    parser.add_argument("--sizes", default="20,1000,10000", help="object counts, comma-separated")
-    parser.add_argument("--repeats", type=int, default=None, help="timed instructions per op and size")
+    parser.add_argument("--objects", type=int, default=None,
+                        help="the largest world (adds the sizes below it)")
+    parser.add_argument("--agents", type=int, default=None,
+                        help="agents of every world (default: 3 at 20, else 10)")
+    parser.add_argument("--sizes", default=",".join(map(str, LADDER)), help="object counts, comma-separated")
+    parser.add_argument("--backend", choices=("sqlite", "postgresql"), default="sqlite")
+    parser.add_argument("--url", default=os.environ.get("OWNCTL_TEST_PG"),
+                        help="PostgreSQL server URL for --backend postgresql (default: $OWNCTL_TEST_PG)")
+    parser.add_argument("--repeats", type=int, default=100, help="timed calls per op and size")
+    parser.add_argument("--warmup", type=int, default=10, help="untimed rounds of every op first")
+    parser.add_argument("--norms", choices=("stated", "learned"), default="stated",
+                        help="the instructor states the true norms first (default), or rules are learned "
+                        "from the permissions alone")
     parser.add_argument("--seed", type=int, default=0)
-    parser.add_argument("--profile", choices=("slowest", "both", "none"), default="slowest",
-                        help="cProfile the slowest op at each size (default), both ops, or none")
+    parser.add_argument("--profile", choices=("slowest", "all", "none"), default="none")
+    parser.add_argument("--quick", action="store_true", help="10 timed calls per op, 3 warm-up rounds")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
-    sizes = [int(s) for s in args.sizes.split(",") if s]
-    results = []
+    if args.quick:
+        args.repeats, args.warmup = 10, 3
     with tempfile.TemporaryDirectory(prefix="ownctl-bench-") as folder:
-        for n in sizes:
-            repeats = args.repeats or (10 if args.quick else (100 if n <= 1000 else 30))
-            warmup = 5 if args.quick or n > 1000 else 20
-            results.append(run_size(n, repeats, warmup, folder, args.seed, args.profile))
+        results = [run_size(n, args, folder) for n in sizes_of(args)]
     info = {"machine": platform.machine(), "cpus": os.cpu_count(), "python": platform.python_version(),
-            "results": results}
+            "backend": args.backend, "load_average": os.getloadavg(), "results": results,
+            "growth": growth(results), "verdicts": verdicts(results)}
     if args.json:
         print(json.dumps(info))
         return
-    print(f"{info['cpus']} CPUs, Python {info['python']}; one AppContext, temporary SQLite file")
-    print(f"{'objects':>8} {'agents':>6} {'op':>10} {'n':>4} {'median ms':>10} {'p90 ms':>8} "
-          f"{'target ms':>10} {'original ms':>12}")
+    load = " ".join(f"{v:.2f}" for v in info["load_average"])
+    print(f"{info['cpus']} CPUs, Python {info['python']}, {args.backend}, load average {load}; "
+          "one Ownctl per store, medians of the timed calls")
+    print(f"{'objects':>8} {'agents':>6} {'load s':>7} {'op':>7} {'n':>4} {'median ms':>10} {'p90 ms':>8} "
+          f"{'target ms':>10}")
     for res in results:
-        for r in res["rows"]:
-            print(f"{r['objects']:>8} {r['agents']:>6} {r['op']:>10} {r['count']:>4} "
-                  f"{fmt(r['median_ms']):>10} {fmt(r['p90_ms']):>8} {fmt(r['target_ms']):>10} "
-                  f"{fmt(r['original_ms']):>12}")
-    print("targets: median, including the store write; original: the research code, no database")
+        for k, r in enumerate(res["rows"]):
+            load_s = f"{res['load_seconds']:.1f}" if k == 0 else ""
+            print(f"{r['objects']:>8} {r['agents']:>6} {load_s:>7} {r['op']:>7} {r['count']:>4} "
+                  f"{fmt(r['median_ms']):>10} {fmt(r['p90_ms']):>8} {fmt(r['target_ms']):>10}")
+    slopes = ", ".join(f"{op} n^{v:.2f}" if v is not None else f"{op} -" for op, v in info["growth"].items())
+    print(f"growth exponent (sizes >= 1000): {slopes}")
+    for what, value, target, passed in info["verdicts"]:
+        print(f"{'PASS' if passed else 'FAIL'} {what}: {fmt(value)} (target {fmt(target)})")
     for res in results:
-        n = res["rows"][0]["objects"]
-        print(f"\n{n} objects: setup {res['setup_seconds']:.1f} s, inductions during the timed permissions: "
-              f"{res['inductions']}, rules at the end: {res['rules']}")
+        print(f"\n{res['objects']} objects: load {res['load_seconds']:.1f} s, "
+              f"warm-up {res['warmup_seconds']:.1f} s, "
+              f"inductions during the timed permissions: {res['inductions']}, checks decided by "
+              f"{res['decided_by']}, rules at the end: {res['rules']}")
         for op, report in res["profiles"].items():
-            print(f"profile of '{op}' at {n} objects (top 15 cumulative):")
+            print(f"profile of '{op}' at {res['objects']} objects (top 15 cumulative):")
             print(report)
 
 

@@ -45,6 +45,7 @@ class Ownctl:
     db: str | None = None
     clock: Callable[[], float] = time.time
     speaker: str | None = None
+    cache: bool = True
     _ctx: AppContext | None = field(default=None, repr=False)
 
     @classmethod
@@ -55,19 +56,22 @@ class Ownctl:
         create: bool = False,
         clock: Callable[[], float] = time.time,
         speaker: str | None = None,
+        cache: bool = True,
     ) -> Ownctl:
         """Open the store ``db`` (a SQLAlchemy URL or SQLite path; None: the default store).
 
         A named store that does not exist is an error unless ``create``; the default store is
-        created on first use, as on the command line.
+        created on first use, as on the command line. ``cache`` keeps the loaded state between calls
+        while no other process writes (``docs/architecture.md``, section 6); False reads the store
+        afresh on every call.
         """
-        out = cls(db, clock, speaker)
+        out = cls(db, clock, speaker, cache)
         out._context().store(create=create)
         return out
 
     def _context(self) -> AppContext:
         if self._ctx is None:
-            self._ctx = AppContext(self.db, now=self.clock(), interface="api")
+            self._ctx = AppContext(self.db, now=self.clock(), interface="api", cache=self.cache)
         self._ctx.now = self.clock()
         return self._ctx
 
@@ -151,6 +155,12 @@ class Ownctl:
         return self._do(
             f"area add {name}", lambda ctx: things.add_area(ctx, name, ",".join(repr(float(v)) for v in box))
         )
+
+    def load_world(self, path: str, seed: int = 0) -> Done:
+        """``world load FILE [--seed N]``: add a world file's agents, areas, objects and ground truth."""
+        from ownctl.app import worldfile
+
+        return self._do(f"world load {path}", lambda ctx: worldfile.load(ctx, path, seed))
 
     def reset(self, what: str) -> Done:
         """``reset perms|rules|claims|all --yes``."""

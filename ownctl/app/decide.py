@@ -21,7 +21,7 @@ from typing import Any
 
 from ownctl.app.beliefs import belief_sources
 from ownctl.app.context import AppContext, use_case
-from ownctl.app.mindstore import load
+from ownctl.app.mindstore import reading
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import parse_rule
 from ownctl.logic.vocab import ACTIONS
@@ -45,7 +45,7 @@ class CheckReport:
 def _step(mind: Mind, i: int, step: str, permission_id: int | None,
           rule_ids: dict[str, int]) -> dict[str, Any]:
     """One step of the decision on the Mind's object ``i``, as the report shows it."""
-    frame = mind.frame().take([i])
+    frame = mind.frame_of([i])
     given = mind.permission(step, i)
     rules = mind.rules[step]
     per_rule = [{"id": rule_ids.get(r.text()), "text": r.text(), "p": float(p_forbidden([r], frame)[0])}
@@ -129,10 +129,10 @@ def check(ctx: AppContext, action: str, obj: str, record: bool = True) -> CheckR
     act = check_action(action)
     with ctx.read() as tx:
         row = tx.things.object(obj)
-        mind = load(tx, ctx.now, only=[obj], permitted=True).mind  # the examples: rule posteriors
+        mind = reading(ctx, tx, only=[obj], permitted=True)  # the examples: rule posteriors
         i = mind.index[obj]
         settings = mind.settings
-        beliefs, sources = mind.posterior()[i], belief_sources(mind, i)
+        beliefs, sources = mind.posterior_rows([i])[0], belief_sources(mind, i)
         permissions = {p.action: p.id for p in tx.knowledge.permissions(row.id)}
         rule_ids = {r.text: r.id for r in tx.knowledge.rules()}
         steps = []

@@ -89,10 +89,19 @@ class _Base:
     claim_info: dict[tuple[str, str], ClaimInfo]
     prior: np.ndarray  # NaN where the store holds no prior
     source: np.ndarray
-    posterior: np.ndarray  # NaN where the store holds no posterior
+    posterior: dict[str, np.ndarray]  # object name -> its stored posteriors (NaN: none stored)
     perms: dict[str, dict[str, Given]]
     rules: dict[str, list[tuple[str, str, Any]]]
     switches: dict[str, bool]
+    layout: int  # the Mind's layout when this was taken (same layout: same objects and agents)
+
+
+#: The belief columns each kind of belief writes, in this order.
+KIND_COLUMNS = {
+    "claim": ("claim_p", "claim_speaker", "claim_trust", "claim_time"),
+    "prior": ("prior_p", "prior_source", "prior_time"),
+    "posterior": ("posterior_p", "posterior_source", "posterior_time"),
+}
 
 
 def _rules_state(mind: Mind) -> dict[str, list[tuple[str, str, Any]]]:
@@ -100,12 +109,20 @@ def _rules_state(mind: Mind) -> dict[str, list[tuple[str, str, Any]]]:
             for a in ACTIONS}
 
 
-def _stored_posterior(mind: Mind) -> np.ndarray:
-    """The posteriors as stored: for objects with permissions while inference is on; NaN elsewhere."""
-    out = np.full(mind.claims.shape, np.nan)
-    idx = mind.permitted()
-    if mind.switches.inference and idx:
-        out[idx] = mind.posterior()[idx]
+def _stored_posterior(mind: Mind) -> dict[str, np.ndarray]:
+    """The posteriors as stored: for objects with permissions while inference is on (by name)."""
+    if not mind.switches.inference:
+        return {}
+    idx, rows = mind.inferred()
+    return {mind.objects[i].name: rows[k] for k, i in enumerate(idx)}
+
+
+def _posterior_array(post: dict[str, np.ndarray], row: dict[str, int], shape: tuple[int, int]) -> np.ndarray:
+    """Stored posteriors by name as an array of ``shape`` (rows by ``row``; NaN where none)."""
+    out = np.full(shape, np.nan)
+    for name, values in post.items():
+        if name in row:
+            out[row[name]] = values
     return out
 
 
@@ -115,18 +132,25 @@ def _switch_values(mind: Mind) -> dict[str, bool]:
 
 @dataclass
 class Stored:
-    """A Mind loaded from the store, with the store ids of its objects and agents."""
+    """A Mind loaded from the store, with the store ids of its objects and agents.
+
+    After :meth:`save` the Mind equals what loading the store would give (``docs/architecture.md``,
+    section 10), so a long-running process may keep a Stored between instructions while nobody
+    else writes (:meth:`ownctl.app.context.AppContext.remember`).
+    """
 
     mind: Mind
     ids: dict[str, int]  # object name -> id
     agent_ids: dict[str, int]
     writable: np.ndarray | None = None  # the belief cells that were loaded (None: all of them)
     base: _Base = field(init=False)
+    _row_ids: tuple[int, np.ndarray] | None = field(default=None, init=False, repr=False)
 
     def __post_init__(self) -> None:
         self.base = self._snapshot()
+        self.mind.forget_edits()
 
-    def _snapshot(self, stored_posterior: np.ndarray | None = None) -> _Base:
+    def _snapshot(self, stored_posterior: dict[str, np.ndarray] | None = None) -> _Base:
         mind = self.mind
         post = _stored_posterior(mind) if stored_posterior is None else stored_posterior
         return _Base(
@@ -134,20 +158,44 @@ class Stored:
             row=dict(mind.index), claims=mind.claims.copy(), claim_info=dict(mind.claim_info),
             prior=mind.predicted.copy(), source=mind.prior_source.copy(), posterior=post,
             perms={a: dict(g) for a, g in mind.perms.items()}, rules=_rules_state(mind),
-            switches=_switch_values(mind),
+            switches=_switch_values(mind), layout=mind.layout,
         )
+
+    def _follow(self, edited: frozenset[str], respecified: frozenset[str],
+                post: dict[str, np.ndarray]) -> None:
+        """Bring the baseline up to the Mind in place, where only ``edited`` agents' belief columns
+        and ``respecified`` objects can differ (the layout is unchanged)."""
+        mind, base = self.mind, self.base
+        cols = [mind.agents.index(a) for a in sorted(edited) if a in mind.agents]
+        base.claims[:, cols] = mind.claims[:, cols]
+        base.prior[:, cols] = mind.predicted[:, cols]
+        base.source[:, cols] = mind.prior_source[:, cols]
+        for name in respecified:
+            base.objects[name] = mind.objects[mind.index[name]]
+        base.claim_info = dict(mind.claim_info)
+        base.posterior = post
+        base.perms = {a: dict(g) for a, g in mind.perms.items()}
+        base.rules = _rules_state(mind)
+        base.switches = _switch_values(mind)
+        base.areas = tuple(mind.areas)
 
     # -- saving ---------------------------------------------------------------------------------
     def save(self, tx: Tx) -> None:
-        """Write what changed since the last load or save, then take the Mind as the new baseline."""
+        """Write what changed since the last load or save, then take the Mind as the new baseline.
+
+        While the objects and agents are the same (the Mind's layout), only the belief columns of
+        the agents the Mind reports edited, the objects whose percepts were set and the objects that
+        carry permissions are compared; otherwise everything is."""
         mind, base = self.mind, self.base
         mind.refresh()
         now = mind.now
+        layout, edited, respecified = mind.belief_edits()
+        same = layout == base.layout and mind.agents == base.agents
         self._save_agents(tx, base)
         self._save_areas(tx, base)
-        self._save_objects(tx, base)
+        fresh = self._save_objects(tx, base, respecified if same else None)
         post = _stored_posterior(mind)
-        self._save_beliefs(tx, base, post)
+        self._save_beliefs(tx, base, post, edited if same else None, fresh)
         self._save_permissions(tx, base)
         rules = _rules_state(mind)
         for action in ACTIONS:
@@ -156,7 +204,11 @@ class Stored:
         for key, value in _switch_values(mind).items():
             if value != base.switches[key]:
                 tx.meta.set_setting(key, value or None)
-        self.base = self._snapshot(post)
+        if same:
+            self._follow(edited, respecified, post)
+        else:
+            self.base = self._snapshot(post)
+        mind.forget_edits()
 
     def _save_agents(self, tx: Tx, base: _Base) -> None:
         for name in base.agents:
@@ -176,22 +228,28 @@ class Stored:
             if area not in base.areas:
                 tx.world.add_area(area.name, area.box)
 
-    def _save_objects(self, tx: Tx, base: _Base) -> None:
+    def _save_objects(self, tx: Tx, base: _Base, respecified: frozenset[str] | None) -> set[str]:
+        """Write added, removed and changed objects (only ``respecified`` ones can have changed,
+        unless None); returns the names of the added ones (their belief rows are not written yet)."""
         mind = self.mind
-        current = {o.name for o in mind.objects}
-        gone = [n for n in base.objects if n not in current]
-        if gone:
-            tx.things.remove_objects([self.ids.pop(n) for n in gone])
-        fresh = [o for o in mind.objects if o.name not in base.objects]
-        if fresh:
-            ids = tx.things.add_objects([self._row(o) for o in fresh], mind.now)
+        if respecified is None:
+            current = {o.name for o in mind.objects}
+            gone = [n for n in base.objects if n not in current]
+            if gone:
+                tx.things.remove_objects([self.ids.pop(n) for n in gone])
+            added = [o for o in mind.objects if o.name not in base.objects]
+            changed = mind.objects
+        else:
+            added, changed = [], [mind.objects[mind.index[n]] for n in sorted(respecified)]
+        if added:
+            ids = tx.things.add_objects([self._row(o) for o in added], mind.now, beliefs=False)
             self.ids.update(ids)
-            tx.things.add_categories([(ids[o.name], c) for o in fresh for c in o.categories])
+            tx.things.add_categories([(ids[o.name], c) for o in added for c in o.categories])
             tx.things.add_touches([(ids[o.name], self.agent_ids[a], t)
-                            for o in fresh for a, t in o.last_touch.items()])
-        for spec in mind.objects:
+                                   for o in added for a, t in o.last_touch.items()])
+        for spec in changed:
             old = base.objects.get(spec.name)
-            if old is None or old == spec:
+            if old is None or old is spec or old == spec:
                 continue
             oid = self.ids[spec.name]
             if (old.color, old.position) != (spec.color, spec.position):
@@ -201,60 +259,144 @@ class Stored:
             for agent, t in spec.last_touch.items():
                 if old.last_touch.get(agent) != t:
                     tx.things.touch(oid, self.agent_ids[agent], t)
+        return {o.name for o in added}
 
     @staticmethod
     def _row(spec: ObjectSpec) -> dict[str, Any]:
         x, y, z = spec.position if spec.position is not None else (None, None, None)
         return {"name": spec.name, "color": spec.color, "x": x, "y": y, "z": z}
 
-    def _save_beliefs(self, tx: Tx, base: _Base, post: np.ndarray) -> None:
-        """Write the claims, priors and posteriors that differ from the baseline (in bulk)."""
-        mind, now = self.mind, self.mind.now
+    def _ids_of_rows(self) -> np.ndarray:
+        """The store id of each of the Mind's objects, by row (kept while the layout is the same)."""
+        mind = self.mind
+        if self._row_ids is None or self._row_ids[0] != mind.layout:
+            self._row_ids = (mind.layout, np.array([self.ids[o.name] for o in mind.objects], dtype=np.int64))
+        return self._row_ids[1]
+
+    def _changed_cells(self, base: _Base, post: dict[str, np.ndarray],
+                       edited: frozenset[str] | None) -> dict[str, np.ndarray]:
+        """kind -> the flat indices (row * m + column) of the cells whose belief of that kind differs
+        from the baseline; ``edited`` (same layout) names the only agents whose claims and priors
+        can differ, None compares everything."""
+        mind = self.mind
         n, m = mind.claims.shape
-        rows = np.array([base.row.get(o.name, -1) for o in mind.objects], dtype=int)
-        old_cols = {a: k for k, a in enumerate(base.agents)}
-        cols = np.array([old_cols.get(a, -1) for a in mind.agents], dtype=int)
-        known = (rows[:, None] >= 0) & (cols[None, :] >= 0)
+        if edited is None:
+            rows = np.array([base.row.get(o.name, -1) for o in mind.objects], dtype=int)
+            old_cols = {a: k for k, a in enumerate(base.agents)}
+            cols = np.array([old_cols.get(a, -1) for a in mind.agents], dtype=int)
+            known = (rows[:, None] >= 0) & (cols[None, :] >= 0)
 
-        def old(table: np.ndarray, fill: Any) -> np.ndarray:
-            out = np.full((n, m), fill, dtype=table.dtype)
-            if table.size and known.any():
-                picked = table[np.clip(rows, 0, None)][:, np.clip(cols, 0, None)]
-                out[known] = picked[known]
-            return out
+            def old(table: np.ndarray, fill: Any) -> np.ndarray:
+                out = np.full((n, m), fill, dtype=table.dtype)
+                if table.size and known.any():
+                    picked = table[np.clip(rows, 0, None)][:, np.clip(cols, 0, None)]
+                    out[known] = picked[known]
+                return out
 
-        claim_changed = ~_same(mind.claims, old(base.claims, np.nan))
-        prior_changed = ~_same(mind.predicted, old(base.prior, np.nan)) | (
-            mind.prior_source != old(base.source, None))
-        post_changed = ~_same(post, old(base.posterior, np.nan))
-        if self.writable is not None:  # cells that were not loaded are not the Mind's to write
-            claim_changed &= self.writable
-            prior_changed &= self.writable
-            post_changed &= self.writable
-        for name, agent in {**base.claim_info, **mind.claim_info}:
-            moved = mind.claim_info.get((name, agent)) != base.claim_info.get((name, agent))
-            if moved and name in mind.index and agent in mind.agents:
-                claim_changed[mind.index[name], mind.agents.index(agent)] = True
-        out: list[dict[str, Any]] = []
-        for i, j in np.argwhere(claim_changed | prior_changed | post_changed):
-            name, agent = mind.objects[i].name, mind.agents[j]
-            entry: dict[str, Any] = {"object_id": self.ids[name], "agent_id": self.agent_ids[agent]}
-            if claim_changed[i, j]:
-                c = mind.claims[i, j]
-                meta = mind.claim_info.get((name, agent)) or ClaimInfo()
-                held = not np.isnan(c)
-                entry.update(claim_p=float(c) if held else None, claim_speaker=meta.speaker if held else None,
-                             claim_trust=meta.trust if held else None, claim_time=meta.time if held else None)
-            if prior_changed[i, j]:
-                entry.update(prior_p=float(mind.predicted[i, j]), prior_source=str(mind.prior_source[i, j]),
-                             prior_time=now)
-            if post_changed[i, j]:
-                held = not np.isnan(post[i, j])
-                entry.update(posterior_p=float(post[i, j]) if held else None,
-                             posterior_source="inference" if held else None,
-                             posterior_time=now if held else None)
-            out.append(entry)
-        tx.beliefs.write_beliefs(out)
+            claim = ~_same(mind.claims, old(base.claims, np.nan))
+            prior = ~_same(mind.predicted, old(base.prior, np.nan))
+            prior |= mind.prior_source != old(base.source, None)
+            base_post = _posterior_array(base.posterior, base.row, (len(base.row), len(base.agents)))
+            now_post = _posterior_array(post, mind.index, (n, m))
+            posterior = ~_same(now_post, old(base_post, np.nan))
+            if self.writable is not None:  # cells that were not loaded are not the Mind's to write
+                claim &= self.writable
+                prior &= self.writable
+                posterior &= self.writable
+            cells = {"claim": np.flatnonzero(claim), "prior": np.flatnonzero(prior),
+                     "posterior": np.flatnonzero(posterior)}
+        else:
+            parts: dict[str, list[np.ndarray]] = {"claim": [], "prior": [], "posterior": []}
+            for agent in sorted(edited):
+                if agent not in mind.agents:
+                    continue
+                j = mind.agents.index(agent)
+                claim = ~_same(mind.claims[:, j], base.claims[:, j])
+                prior = ~_same(mind.predicted[:, j], base.prior[:, j])
+                prior |= mind.prior_source[:, j] != base.source[:, j]
+                if self.writable is not None:
+                    claim &= self.writable[:, j]
+                    prior &= self.writable[:, j]
+                parts["claim"].append(np.flatnonzero(claim) * m + j)
+                parts["prior"].append(np.flatnonzero(prior) * m + j)
+            nothing = np.full(m, np.nan)
+            for name in sorted(set(base.posterior) | set(post)):
+                i = mind.index[name]
+                differs = ~_same(post.get(name, nothing), base.posterior.get(name, nothing))
+                if self.writable is not None:
+                    differs &= self.writable[i]
+                parts["posterior"].append(i * m + np.flatnonzero(differs))
+            # distinct already: each part is one column's cells, or one object's
+            cells = {k: np.concatenate(v) if v else np.zeros(0, dtype=int) for k, v in parts.items()}
+        moved = [mind.index[name] * m + mind.agents.index(agent)
+                 for name, agent in {**base.claim_info, **mind.claim_info}
+                 if mind.claim_info.get((name, agent)) != base.claim_info.get((name, agent))
+                 and name in mind.index and agent in mind.agents]
+        if moved:
+            cells["claim"] = np.union1d(cells["claim"], np.array(moved, dtype=int))
+        return cells
+
+    def _save_beliefs(self, tx: Tx, base: _Base, post: dict[str, np.ndarray], edited: frozenset[str] | None,
+                      fresh: set[str]) -> None:
+        """Write the claims, priors and posteriors that differ from the baseline, in bulk: one
+        statement per set of columns; the belief rows of ``fresh`` objects are inserted whole."""
+        mind = self.mind
+        m = len(mind.agents)
+        cells = self._changed_cells(base, post, edited)
+        flat = np.zeros(len(mind.objects) * m, dtype=np.int8)  # per cell: which kinds changed (bits)
+        for bit, kind in enumerate(KIND_COLUMNS):
+            flat[cells[kind]] |= np.int8(1 << bit)
+        new_row = np.zeros(len(mind.objects), dtype=bool)
+        new_row[[mind.index[name] for name in fresh]] = True
+        flat[np.repeat(new_row, m)] |= np.int8(8)  # every (fresh object, agent) pair gets its row
+        every = np.flatnonzero(flat)
+        if not len(every):
+            return
+        code, inserted = flat[every] & 7, new_row[every // m]
+        row_ids = self._ids_of_rows()
+        agent_ids = np.array([self.agent_ids[a] for a in mind.agents], dtype=np.int64)
+        for c in np.unique(code):
+            for insert in (False, True):
+                pick = every[(code == c) & (inserted == insert)]
+                if not len(pick):
+                    continue
+                # a new row gets every column (NULL where nothing is held)
+                kinds = list(KIND_COLUMNS) if insert else [k for b, k in enumerate(KIND_COLUMNS)
+                                                           if c >> b & 1]
+                i, j = pick // m, pick % m
+                values = self._cell_values(kinds, i, j, post)
+                objects, agents = row_ids[i].tolist(), agent_ids[j].tolist()
+                if insert:
+                    tx.beliefs.insert_beliefs(objects, agents, values)
+                else:
+                    tx.beliefs.update_beliefs(objects, agents, values)
+
+    def _cell_values(self, kinds: list[str], i: np.ndarray, j: np.ndarray,
+                     post: dict[str, np.ndarray]) -> dict[str, list[Any]]:
+        """column -> stored value for each cell (i[k], j[k]), for the columns of ``kinds``."""
+        mind, now = self.mind, self.mind.now
+        rows, cols = i.tolist(), j.tolist()
+        values: dict[str, list[Any]] = {}
+        if "claim" in kinds:
+            claim = mind.claims[i, j].tolist()
+            metas = [mind.claim_info.get((mind.objects[a].name, mind.agents[b])) or ClaimInfo()
+                     if not np.isnan(p) else None for a, b, p in zip(rows, cols, claim, strict=True)]
+            values["claim_p"] = [None if g is None else float(p) for p, g in zip(claim, metas, strict=True)]
+            values["claim_speaker"] = [None if g is None else g.speaker for g in metas]
+            values["claim_trust"] = [None if g is None else g.trust for g in metas]
+            values["claim_time"] = [None if g is None else g.time for g in metas]
+        if "prior" in kinds:
+            values["prior_p"] = mind.predicted[i, j].tolist()
+            values["prior_source"] = mind.prior_source[i, j].tolist()  # str already
+            values["prior_time"] = [now] * len(rows)
+        if "posterior" in kinds:
+            by_row = {mind.index[name]: row for name, row in post.items()}
+            held = [None if a not in by_row or np.isnan(by_row[a][b]) else float(by_row[a][b])
+                    for a, b in zip(rows, cols, strict=True)]
+            values["posterior_p"] = held
+            values["posterior_source"] = [None if p is None else "inference" for p in held]
+            values["posterior_time"] = [None if p is None else now for p in held]
+        return values
 
     def _save_permissions(self, tx: Tx, base: _Base) -> None:
         for action in ACTIONS:
@@ -351,7 +493,9 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
                           RuleInfo(row.origin, dict(row.provenance or {})))
     out = Stored(mind, {r.name: r.id for r in rows}, agent_ids, writable)
     # compare with what the store really holds (NULL priors and posteriors are written on save)
-    out.base.prior, out.base.posterior = prior, stored_post
+    held = np.flatnonzero(~np.isnan(stored_post).all(axis=1))
+    out.base.prior = prior
+    out.base.posterior = {specs[i].name: stored_post[i] for i in held.tolist()}
     return out
 
 
@@ -359,9 +503,30 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
 def changing(ctx: AppContext, payload: dict[str, Any], actor: str | None = None,
              only: Sequence[str] | None = None, permitted: bool = False,
              agents: Sequence[str] | None = None) -> Iterator[tuple[Tx, Mind]]:
-    """One instruction as one write transaction: log it, load the Mind it needs (see :func:`load`),
-    let the caller change it, save what changed. An error leaves the store as it was."""
-    with ctx.write(payload, actor=actor) as tx:
-        stored = load(tx, ctx.now, only, permitted, agents)
+    """One instruction as one write transaction: log it, load the Mind it needs (see :func:`load`;
+    a caching context uses its kept whole Mind while it is the store's), let the caller change it,
+    save what changed. An error leaves the store as it was."""
+    with ctx.write(payload, actor=actor, through_mind=True) as tx:
+        if ctx.cache and only:
+            for name in only:  # unknown names are the errors a partial load raises
+                tx.things.object(name)
+        stored = ctx.kept(tx)
+        if stored is None:
+            stored = load(tx, ctx.now) if ctx.cache else load(tx, ctx.now, only, permitted, agents)
+        stored.mind.at(ctx.now)
         yield tx, stored.mind
         stored.save(tx)
+        ctx.remember(tx, stored)
+
+
+def reading(ctx: AppContext, tx: Tx, only: Sequence[str] | None = None, permitted: bool = False) -> Mind:
+    """The Mind a query reads (see :func:`load`): the kept whole Mind of a caching context while it
+    is still the store's (loaded and kept when it is not), else the partial Mind asked for. The
+    caller must not change it."""
+    if not ctx.cache:
+        return load(tx, ctx.now, only, permitted).mind
+    stored = ctx.kept(tx)
+    if stored is None:
+        stored = load(tx, ctx.now)
+        ctx.remember(tx, stored)
+    return stored.mind.at(ctx.now)

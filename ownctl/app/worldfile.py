@@ -14,8 +14,8 @@ from pathlib import Path
 from typing import Any
 
 from ownctl.app.context import AppContext, Done, use_case
+from ownctl.app.mindstore import Stored, spec_of
 from ownctl.app.mindstore import load as load_mind
-from ownctl.app.mindstore import spec_of
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.humanize import plural
 from ownctl.world.model import Area, World
@@ -38,11 +38,11 @@ def read_world(path: str, seed: int = 0) -> World:
     return world_from_dict(data, str(path), np.random.default_rng(seed))
 
 
-def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = False) -> None:
+def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = False) -> Stored:
     """Add ``world``'s agents (reused when they exist), areas, objects and ground truth to the store.
 
     The objects join the Mind (every agent's predictions cover them) and are saved in bulk; the
-    ground truth goes to its own tables.
+    ground truth goes to its own tables. Returns the saved whole Mind.
     """
     stored = load_mind(tx, now)
     mind = stored.mind
@@ -60,6 +60,7 @@ def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = F
     truth = [(ids[s.name], agents[a], p)
              for s in world.objects for a, p in world.owners.get(s.name, {}).items()]
     tx.knowledge.set_truth(truth, world.norms)
+    return stored
 
 
 @use_case
@@ -68,7 +69,7 @@ def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
     world = read_world(path, seed)
     payload = {"op": "world.load", "file": str(path), "world": world.name, "seed": seed}
     with ctx.write(payload) as tx:
-        store_world(tx, world, ctx.now)
+        ctx.remember(tx, store_world(tx, world, ctx.now))
     counts = {"agents": len(world.agents), "areas": len(world.areas), "objects": len(world.objects)}
     listing = ", ".join(plural(n, k.removesuffix("s")) for k, n in counts.items())
     return Done(

@@ -110,6 +110,47 @@ class NormResult:
     removed: tuple[Rule, ...]
 
 
+class _Percepts:
+    """The objects' percepts as arrays, for prediction over every object without a Python loop per
+    prediction: positions (n, 3; NaN unknown), colours, the palette and categories, and per agent
+    the absolute times of its last touches (NaN: never), each built on first use."""
+
+    def __init__(self, objects: Sequence[ObjectSpec]) -> None:
+        self._objects = objects
+        self.positions = positions(objects)
+        self.colors: list[str | None] = [o.color for o in objects]
+        self._touches: dict[str, np.ndarray] = {}
+        self._palette: tuple[tuple[str, ...], tuple[str, ...]] | None = None
+
+    def palette(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
+        """The sorted distinct colours and categories of the objects."""
+        if self._palette is None:
+            colors = tuple(sorted({c for c in self.colors if c}))
+            cats = tuple(sorted({c for o in self._objects for c in o.categories}))
+            self._palette = (colors, cats)
+        return self._palette
+
+    def touch_times(self, agent: str) -> np.ndarray:
+        """(n,) absolute time of ``agent``'s last touch of each object, NaN where it never touched."""
+        if agent not in self._touches:
+            self._touches[agent] = np.array([o.last_touch.get(agent, np.nan) for o in self._objects],
+                                            dtype=float)
+        return self._touches[agent]
+
+    def touched(self, i: int, agent: str, time: float) -> None:
+        """Object ``i`` was touched by ``agent`` at ``time``."""
+        if agent in self._touches:
+            self._touches[agent][i] = time
+
+    def respecified(self, i: int, spec: ObjectSpec) -> None:
+        """Object ``i`` has new percepts ``spec``."""
+        self.positions[i] = positions([spec])[0]
+        self.colors[i] = spec.color
+        self._palette = None
+        for agent, times in self._touches.items():
+            times[i] = spec.last_touch.get(agent, np.nan)
+
+
 def _names_rule(rule: Rule, pred: str, name: str) -> bool:
     return any(lit.atom == (pred, name) for lit in rule.literals)
 
@@ -163,15 +204,38 @@ class Mind:
         self.info: dict[str, dict[Rule, RuleInfo]] = {a: {} for a in ACTIONS}
         self._seq = 0
         self._rule_posteriors: dict[str, RulePosterior] = {}
+        self.layout = 0  # advanced whenever the objects, agents or areas change (see belief_edits)
+        self._edited: set[str] = set()  # agents whose belief columns may have changed
+        self._respecified: set[str] = set()  # objects whose percepts changed (not added or removed)
         self._reindex()
         self._stale: set[str] = set()  # agents whose predictions must be refitted before use
         self._posterior: np.ndarray | None = None
+        self._inferred: tuple[list[int], np.ndarray] | None = None
 
     # -- structure ---------------------------------------------------------------------------
     def _reindex(self) -> None:
         self.index = {o.name: i for i, o in enumerate(self.objects)}
         self._frame: Frame | None = None
+        self._percepts: _Percepts | None = None
+        self.layout += 1
         self._changed()
+
+    def percepts(self) -> _Percepts:
+        """The objects' percepts as arrays (kept until the objects change; see :class:`_Percepts`)."""
+        if self._percepts is None:
+            self._percepts = _Percepts(self.objects)
+        return self._percepts
+
+    def belief_edits(self) -> tuple[int, frozenset[str], frozenset[str]]:
+        """What may have changed since :meth:`forget_edits`: the layout (compare it), the agents whose
+        claims, predictions or prior sources may differ, and the objects whose percepts were set.
+        Every other belief cell and object is as it was (posteriors are not tracked)."""
+        return self.layout, frozenset(self._edited), frozenset(self._respecified)
+
+    def forget_edits(self) -> None:
+        """Start tracking edits afresh (after the state was saved)."""
+        self._edited.clear()
+        self._respecified.clear()
 
     def _base_rate(self) -> float:
         return calibrated_base_rate(self.settings.predict)
@@ -182,8 +246,7 @@ class Mind:
         if self._fixed_vocab is not None:
             colors, cats = self._fixed_vocab.colors, self._fixed_vocab.categories
         else:
-            colors = tuple(sorted({o.color for o in self.objects if o.color}))
-            cats = tuple(sorted({c for o in self.objects for c in o.categories}))
+            colors, cats = self.percepts().palette()
         return Vocabulary(self.agents, colors, tuple(a.name for a in self.areas), cats)
 
     def at(self, now: float) -> Mind:
@@ -211,6 +274,14 @@ class Mind:
         self.refresh()
         return np.where(np.isnan(self.claims), self.predicted, self.claims)
 
+    def prior_rows(self, rows: Sequence[int]) -> np.ndarray:
+        """The prior of the objects at ``rows`` only (len(rows), m): ``prior[rows]``, computed alone."""
+        self.refresh()
+        idx = np.asarray(rows, dtype=int)
+        claims = self.claims[idx]
+        out: np.ndarray = np.where(np.isnan(claims), self.predicted[idx], claims)
+        return out
+
     def refresh(self) -> None:
         """Refit the predictors made stale by claims, touches or percepts (predictions are a pure
         function of the claims and the percepts, so computing them when first needed changes no
@@ -222,6 +293,7 @@ class Mind:
 
     def _stale_agents(self, agents: Iterable[str]) -> None:
         fresh = set(agents)
+        self._edited.update(fresh)
         if fresh and self.switches.prediction:
             if not self.complete:
                 raise RuntimeError("refitting a predictor needs every object; load the whole store")
@@ -238,10 +310,10 @@ class Mind:
             return
         cfg = self.settings.predict
         agent = self.agents[j]
-        ages = np.array([max(0.0, self.now - o.last_touch[agent]) if agent in o.last_touch else np.nan
-                         for o in self.objects])
-        X = agent_features(positions(self.objects), [o.color for o in self.objects], ages,
-                           self.vocab.colors, cfg)
+        seen = self.percepts()
+        times = seen.touch_times(agent)
+        ages = np.maximum(0.0, self.now - times)  # NaN (never touched) stays NaN
+        X = agent_features(seen.positions, seen.colors, ages, self.vocab.colors, cfg)
         known = ~np.isnan(self.claims[:, j])
         model = KernelOwnershipModel(cfg).fit(X[known], self.claims[known, j])
         self.predicted[:, j] = model.predict_proba(X)
@@ -254,6 +326,11 @@ class Mind:
             self._frame = make_frame(self.objects, self.areas, self.agents, np.zeros((n, m)))
         return self._frame.with_own(self.posterior() if own is None else own)
 
+    def frame_of(self, rows: Sequence[int]) -> Frame:
+        """The evaluation frame of the objects at ``rows`` only, on their posteriors
+        (``frame().take(rows)``, without computing every object's posterior)."""
+        return make_frame([self.objects[i] for i in rows], self.areas, self.agents, self.posterior_rows(rows))
+
     def permitted(self) -> list[int]:
         """Indices of the objects that carry some permission, ascending."""
         return sorted({self.index[name] for given in self.perms.values() for name in given})
@@ -262,9 +339,20 @@ class Mind:
         """Rule-based posterior (n, m): the prior, conditioned on each object's permissions (each
         evaluated on the percepts its object had when it was given); the prior when inference is off."""
         if self._posterior is None:
-            prior = self.prior
-            out = prior.copy()
+            out = self.prior
+            idx, rows = self.inferred()
+            if idx:
+                out[idx] = rows
+            self._posterior = out
+        return self._posterior
+
+    def inferred(self) -> tuple[list[int], np.ndarray]:
+        """The objects that carry permissions (ascending) and their posterior rows; only they differ
+        from the prior (they are the prior too while inference is off)."""
+        if self._inferred is None:
             idx = self.permitted()
+            prior = self.prior_rows(idx)
+            rows = prior
             if self.switches.inference and idx:
                 where = {i: k for k, i in enumerate(idx)}
                 values: dict[str, np.ndarray] = {}
@@ -278,14 +366,25 @@ class Mind:
                         k = where[self.index[name]]
                         vec[k], specs[k] = g.value, g.seen
                     values[action] = vec
-                    seen[action] = make_frame(specs, self.areas, self.agents, prior[idx])
-                current = make_frame([self.objects[i] for i in idx], self.areas, self.agents, prior[idx])
-                out[idx] = posterior(current, self.rules, values, self.settings.infer.noise, seen)
-            self._posterior = out
-        return self._posterior
+                    seen[action] = make_frame(specs, self.areas, self.agents, prior)
+                current = make_frame([self.objects[i] for i in idx], self.areas, self.agents, prior)
+                rows = posterior(current, self.rules, values, self.settings.infer.noise, seen)
+            self._inferred = (idx, rows)
+        return self._inferred
+
+    def posterior_rows(self, rows: Sequence[int]) -> np.ndarray:
+        """``posterior()[rows]``, computed for those objects only."""
+        idx, inferred = self.inferred()
+        where = {i: k for k, i in enumerate(idx)}
+        out = self.prior_rows(rows)
+        for r, i in enumerate(rows):
+            if i in where:
+                out[r] = inferred[where[i]]
+        return out
 
     def _changed(self) -> None:
         self._posterior = None
+        self._inferred = None
         self._rule_posteriors = {}
 
     def rule_posterior(self, action: str) -> RulePosterior:
@@ -304,14 +403,14 @@ class Mind:
         ev, _ = self.evidence(action)
         if ev.n == 0:
             return 1.0
-        frame = ev.frame if obj is None else self.frame().take([self.obj(obj)])
+        frame = ev.frame if obj is None else self.frame_of([self.obj(obj)])
         return self.rule_posterior(action).support(rule, frame)
 
     def p_rules(self, action: str, obj: int | str) -> float:
         """P(the action's rules forbid it on the object): on the learned rule set, or with
         ``decide_rules = "posterior"`` marginalised over the posterior of rule sets."""
         i = self.obj(obj)
-        frame = self.frame().take([i])
+        frame = self.frame_of([i])
         if self.settings.decide_rules == "posterior" and self.perms[action]:
             return float(self.rule_posterior(action).p_forbidden(frame)[0])
         return float(p_forbidden(self.rules[action], frame)[0])
@@ -333,7 +432,7 @@ class Mind:
         """
         given = self.ordered(action)
         idx = [self.index[name] for name, _ in given]
-        frame = make_frame([g.seen for _, g in given], self.areas, self.agents, self.prior[idx])
+        frame = make_frame([g.seen for _, g in given], self.areas, self.agents, self.prior_rows(idx))
         return Evidence(frame, [g.value for _, g in given]), idx
 
     def _set_rules(self, action: str, rules: Sequence[Rule], ev: Evidence, idx: Sequence[int],
@@ -385,6 +484,9 @@ class Mind:
         self._column(agent)
         spec = self.objects[i]
         self.objects[i] = replace(spec, last_touch={**spec.last_touch, agent: float(time)})
+        self._respecified.add(spec.name)
+        if self._percepts is not None:
+            self._percepts.touched(i, agent, float(time))
         self._stale_agents([agent])
 
     def set_percepts(self, obj: int | str, *, color: Any = KEEP, position: Any = KEEP,
@@ -403,7 +505,10 @@ class Mind:
             return
         palette = self.vocab.colors
         self.objects[i] = spec
+        self._respecified.add(spec.name)
         self._frame = None
+        if self._percepts is not None:
+            self._percepts.respecified(i, spec)
         stale = self.agents if self.vocab.colors != palette else self._claimed_agents()
         self._stale_agents(stale)  # also forgets what the old percepts implied
 
@@ -511,6 +616,7 @@ class Mind:
 
     # -- instructions: the world -----------------------------------------------------------------
     def _grow(self, rows: int = 0, cols: int = 0) -> None:
+        self.layout += 1
         base = self._base_rate()
         n, m = self.claims.shape
         if rows:
@@ -580,6 +686,7 @@ class Mind:
         self.claim_info = {k: v for k, v in self.claim_info.items() if k[1] != name}
         self.objects = [replace(o, last_touch={a: t for a, t in o.last_touch.items() if a != name})
                         if name in o.last_touch else o for o in self.objects]
+        self._edited.discard(name)
         self._stale.discard(name)
         self._reindex()
 

@@ -7,7 +7,9 @@ Rules (docs/architecture.md, section 6):
 - a file that is not an ownctl store (junk bytes, another SQLite database) is refused untouched;
 - a store at an unknown (newer) revision is refused; an older one is upgraded on open;
 - SQLite connections get ``foreign_keys=ON`` and a busy timeout; the file is put in WAL mode;
-- one :meth:`Store.transaction` is one SQL transaction: an exception inside writes nothing.
+- one :meth:`Store.transaction` is one SQL transaction: an exception inside writes nothing;
+- every write transaction advances the store generation (``generation.value``) first, in the same
+  transaction, so a reader sees a consistent pair of data and generation.
 """
 
 from __future__ import annotations
@@ -202,9 +204,14 @@ class Store:
             with self.engine.connect() as conn:
                 if write:
                     conn.execution_options(ownctl_write=True)
+                elif conn.dialect.name == "postgresql":  # one snapshot: the generation and the data agree
+                    conn.execution_options(isolation_level="REPEATABLE READ")
                 with Session(bind=conn, expire_on_commit=False, autoflush=True) as session:
                     with session.begin():
-                        yield Tx(session)
+                        tx = Tx(session)
+                        if write:
+                            tx.meta.advance()  # first, inside the write lock: the generation is this tx's
+                        yield tx
         except DBAPIError as exc:
             raise database_error(exc, self.location) from None
 

@@ -10,7 +10,19 @@ from __future__ import annotations
 
 from typing import Any
 
-from sqlalchemy import JSON, Float, ForeignKey, Integer, MetaData, String, Text, UniqueConstraint
+from sqlalchemy import (
+    JSON,
+    BigInteger,
+    Float,
+    ForeignKey,
+    Index,
+    Integer,
+    MetaData,
+    PrimaryKeyConstraint,
+    String,
+    Text,
+    UniqueConstraint,
+)
 from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
 
 #: Every constraint gets a predictable name, so batch-mode migrations can drop and alter them.
@@ -100,12 +112,19 @@ class Ownership(Base):
     """Beliefs about ``ownedBy(object, agent)``: the claim, the prior and the posterior, each nullable.
 
     One row exists for every (object, agent) pair (created with the object or the agent), so beliefs
-    for many objects are written with one bulk UPDATE by primary key.
+    for many objects are written with one bulk UPDATE by primary key. The key is (agent, object):
+    an agent's rows lie together (on SQLite the table is stored by its key), so refitting one agent's
+    predictor rewrites a compact range; lookups by object use the object_id index.
     """
 
     __tablename__ = "ownership"
-    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"), primary_key=True)
-    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
+    __table_args__ = (
+        PrimaryKeyConstraint("agent_id", "object_id"),
+        Index("ix_ownership_object_id", "object_id"),
+        {"sqlite_with_rowid": False},
+    )
+    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"))
+    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"))
     claim_p: Mapped[float | None] = mapped_column(Float)
     claim_speaker: Mapped[str | None] = mapped_column(String(NAME))
     claim_trust: Mapped[float | None] = mapped_column(Float)
@@ -116,6 +135,14 @@ class Ownership(Base):
     posterior_p: Mapped[float | None] = mapped_column(Float)
     posterior_source: Mapped[str | None] = mapped_column(String(32))
     posterior_time: Mapped[float | None] = mapped_column(Float)
+
+
+class Generation(Base):
+    """The store generation: one row (id 1) whose ``value`` every write transaction advances."""
+
+    __tablename__ = "generation"
+    id: Mapped[int] = mapped_column(Integer, primary_key=True)
+    value: Mapped[int] = mapped_column(BigInteger)
 
 
 class Permission(Base):

@@ -8,14 +8,15 @@ Beliefs about many (object, agent) pairs are written with one bulk UPDATE by pri
 from __future__ import annotations
 
 from collections import Counter
-from collections.abc import Iterable, Sequence
+from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from itertools import islice
 from typing import Any, cast
 
-from sqlalchemy import Table, bindparam, delete, func, insert, select, update
+from sqlalchemy import Table, delete, func, insert, select, update
 from sqlalchemy.orm import Session
 
-from ownctl.errors import DuplicateName, UnknownName
+from ownctl.errors import DuplicateName, StoreError, UnknownName
 from ownctl.store.models import (
     Agent,
     Area,
@@ -23,6 +24,7 @@ from ownctl.store.models import (
     Category,
     Conversation,
     Event,
+    Generation,
     Object,
     Ownership,
     Permission,
@@ -35,13 +37,64 @@ from ownctl.store.models import (
 
 BELIEF_KINDS = ("claim", "prior", "posterior")
 CHUNK = 900  # ids per IN (...) clause, below SQLite's default limit on bound parameters
+BATCH = 100_000  # rows per executemany of a bulk insert
 
 KEEP: Any = object()
 
 
 def _table(model: type[Base]) -> Table:
     """The Core table of an ORM model (for bulk statements)."""
-    return cast(Table, model.__table__)  # "leave this part of the conversation as it is" (Tx.converse)
+    return cast(Table, model.__table__)
+
+
+#: PostgreSQL array types of the columns that bulk updates pass as arrays.
+PG_ARRAY_TYPES = {"object_id": "integer[]", "agent_id": "integer[]", "time": "float8[]"}
+
+
+def _pg_array_type(column: str) -> str:
+    if column in PG_ARRAY_TYPES:
+        return PG_ARRAY_TYPES[column]
+    return "text[]" if column.endswith(("_speaker", "_source")) else "float8[]"
+
+
+def bulk_insert(session: Session, table: str, columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> None:
+    """Insert many rows of plain values (no JSON columns) with one statement: COPY on PostgreSQL,
+    one executemany on SQLite (no per-row ORM or parameter-dict work)."""
+    conn = session.connection()
+    names = ", ".join(columns)
+    if conn.dialect.name == "postgresql":
+        raw: Any = conn.connection.dbapi_connection
+        with raw.cursor() as cur, cur.copy(f"COPY {table} ({names}) FROM STDIN") as copy:
+            for row in rows:
+                copy.write_row(row)
+        return
+    marks = ", ".join("?" for _ in columns)
+    statement = f"INSERT INTO {table} ({names}) VALUES ({marks})"
+    it = iter(rows)
+    while batch := list(map(tuple, islice(it, BATCH))):
+        conn.exec_driver_sql(statement, batch)
+
+
+def bulk_update(session: Session, table: str, keys: Sequence[str], columns: Sequence[str],
+                values: Mapping[str, Sequence[Any]]) -> None:
+    """``UPDATE table SET columns... WHERE keys...`` for many rows with one statement: an
+    executemany on SQLite, one ``UPDATE ... FROM unnest(arrays)`` on PostgreSQL. ``values`` maps
+    every key and column to a list, one entry per row."""
+    if not columns or not values[keys[0]]:
+        return
+    conn = session.connection()
+    if conn.dialect.name == "postgresql":
+        names = [*keys, *columns]
+        arrays = ", ".join(f"%(a{k})s::{_pg_array_type(c)}" for k, c in enumerate(names))
+        sets = ", ".join(f"{c} = v.{c}" for c in columns)
+        match = " AND ".join(f"t.{k} = v.{k}" for k in keys)
+        sql = f"UPDATE {table} AS t SET {sets} FROM unnest({arrays}) AS v({', '.join(names)}) WHERE {match}"
+        conn.exec_driver_sql(sql, {f"a{k}": list(values[c]) for k, c in enumerate(names)})
+        return
+    sets = ", ".join(f"{c} = ?" for c in columns)
+    match = " AND ".join(f"{k} = ?" for k in keys)
+    rows = list(zip(*(values[c] for c in columns), *(values[k] for k in keys), strict=True))
+    conn.exec_driver_sql(f"UPDATE {table} SET {sets} WHERE {match}", rows)
 
 
 @dataclass(frozen=True)
@@ -92,9 +145,9 @@ class World(_Part):
         row = Agent(name=name, created=now)
         self.session.add(row)
         self.session.flush()
-        ids = list(self.session.scalars(select(Object.id)))
+        ids = list(self.session.scalars(select(Object.id).order_by(Object.id)))
         if ids:
-            self.session.execute(insert(Ownership), [{"object_id": o, "agent_id": row.id} for o in ids])
+            bulk_insert(self.session, "ownership", ("agent_id", "object_id"), ((row.id, o) for o in ids))
         return row
 
     def remove(self, row: Base) -> None:
@@ -166,9 +219,11 @@ class Things(_Part):
         rank = {oid: k for k, oid in enumerate(ids)}
         return sorted(out, key=lambda r: rank[r.id])
 
-    def add_objects(self, specs: Sequence[dict[str, Any]], now: float) -> dict[str, int]:
-        """Many new objects at once (dicts of name, color, x, y, z), each with an ownership row per
-        agent; returns name -> id. Duplicate names (among them or with stored objects) are refused."""
+    def add_objects(self, specs: Sequence[dict[str, Any]], now: float,
+                    beliefs: bool = True) -> dict[str, int]:
+        """Many new objects at once (dicts of name, color, x, y, z), each with an (empty) ownership row
+        per agent unless ``beliefs`` is false (the caller inserts them, see Beliefs.insert_beliefs);
+        returns name -> id. Duplicate names (among them or with stored objects) are refused."""
         names = [s["name"] for s in specs]
         taken = sorted(self._object_ids(names)) or sorted(n for n, k in Counter(names).items() if k > 1)
         if taken:
@@ -179,14 +234,18 @@ class Things(_Part):
         rows = [{**{k: s.get(k) for k in keys}, "extra": s.get("extra") or {}, "created": now} for s in specs]
         self.session.connection().execute(insert(_table(Object)), rows)
         ids = self._object_ids(names)
-        agents = list(self.session.scalars(select(Agent.id)))
-        if agents:
-            beliefs = [{"object_id": ids[n], "agent_id": a} for n in names for a in agents]
-            self.session.connection().execute(insert(_table(Ownership)), beliefs)
+        agents = list(self.session.scalars(select(Agent.id).order_by(Agent.id)))
+        if agents and beliefs:
+            bulk_insert(self.session, "ownership", ("agent_id", "object_id"),
+                        ((a, ids[n]) for a in agents for n in names))
         return ids
 
     def _object_ids(self, names: Sequence[str]) -> dict[str, int]:
-        """name -> id of the stored objects among ``names``."""
+        """name -> id of the stored objects among ``names`` (many names: one scan of the table)."""
+        if len(names) > 10 * CHUNK:
+            wanted = set(names)
+            rows = self.session.execute(select(Object.name, Object.id)).all()
+            return {n: i for n, i in rows if n in wanted}
         out: dict[str, int] = {}
         for start in range(0, len(names), CHUNK):
             query = select(Object.name, Object.id).where(Object.name.in_(names[start : start + CHUNK]))
@@ -293,10 +352,7 @@ class Things(_Part):
     def add_touches(self, rows: Sequence[tuple[int, int, float]]) -> None:
         """Many (object id, agent id, time) interactions of objects that have none yet, at once."""
         if rows:
-            self.session.connection().execute(
-                insert(_table(Touch)),
-                [{"object_id": o, "agent_id": a, "time": t} for o, a, t in rows],
-            )
+            bulk_insert(self.session, "touches", ("object_id", "agent_id", "time"), rows)
 
 
 class Beliefs(_Part):
@@ -337,26 +393,37 @@ class Beliefs(_Part):
     def write_beliefs(self, rows: Sequence[dict[str, Any]]) -> None:
         """Bulk UPDATE of ownership rows; each dict has object_id, agent_id and the columns to set.
 
-        One executemany statement per set of columns (plain Core, no per-row ORM work).
+        One statement per set of columns (:meth:`update_beliefs`).
         """
         groups: dict[tuple[str, ...], list[dict[str, Any]]] = {}
         for row in rows:
             columns = tuple(sorted(k for k in row if k not in ("object_id", "agent_id")))
             groups.setdefault(columns, []).append(row)
-        table = _table(Ownership)
         for columns, group in groups.items():
-            statement = (
-                update(table)
-                .where(table.c.object_id == bindparam("k_object"), table.c.agent_id == bindparam("k_agent"))
-                .values({c: bindparam(f"v_{c}") for c in columns})
-            )
-            params = [
-                {"k_object": r["object_id"], "k_agent": r["agent_id"], **{f"v_{c}": r[c] for c in columns}}
-                for r in group
-            ]
-            self.session.connection().execute(statement, params)
-        if rows:
-            self._expire(Ownership)
+            self.update_beliefs([r["object_id"] for r in group], [r["agent_id"] for r in group],
+                                {c: [r[c] for r in group] for c in columns})
+
+    def update_beliefs(self, object_ids: Sequence[int], agent_ids: Sequence[int],
+                       values: Mapping[str, Sequence[Any]]) -> None:
+        """Set the columns in ``values`` (column -> one value per row) of the ownership rows
+        (object_ids[k], agent_ids[k]), with one bulk statement (:func:`bulk_update`)."""
+        if not len(object_ids):
+            return
+        columns = tuple(values)
+        bulk_update(self.session, "ownership", ("agent_id", "object_id"), columns,
+                    {"agent_id": agent_ids, "object_id": object_ids, **values})
+        self._expire(Ownership)
+
+    def insert_beliefs(self, object_ids: Sequence[int], agent_ids: Sequence[int],
+                       values: Mapping[str, Sequence[Any]]) -> None:
+        """New ownership rows (object_ids[k], agent_ids[k]) with the columns in ``values``, at once."""
+        if not len(object_ids):
+            return
+        columns = ("agent_id", "object_id", *values)
+        order = sorted(range(len(object_ids)), key=lambda k: (agent_ids[k], object_ids[k]))  # key order
+        data = [agent_ids, object_ids, *values.values()]
+        rows = zip(*([c[k] for k in order] for c in data), strict=True)
+        bulk_insert(self.session, "ownership", columns, rows)
 
 
 class Knowledge(_Part):
@@ -496,6 +563,22 @@ class Meta(_Part):
             self.tx._settings = {k: v for k, v in self.session.execute(select(Setting.key, Setting.value))}
         return dict(self.tx._settings)
 
+    def advance(self) -> int:
+        """Advance the store generation (the first statement of every write transaction); the
+        transaction's ``generation`` and ``previous`` follow."""
+        table = _table(Generation)
+        self.session.execute(update(table).where(table.c.id == 1).values(value=table.c.value + 1))
+        self.tx.generation = self.generation()
+        self.tx.previous = self.tx.generation - 1
+        return self.tx.generation
+
+    def generation(self) -> int:
+        """The store generation: how many write transactions were committed (or this one's number)."""
+        value = self.session.scalar(select(Generation.value).where(Generation.id == 1))
+        if value is None:
+            raise StoreError("the store has no generation row; it is damaged (restore it from a backup)")
+        return int(value)
+
     def set_setting(self, key: str, value: Any) -> None:
         """Store (or with ``value`` None, delete) a setting."""
         self.tx._settings = None
@@ -576,6 +659,10 @@ class Tx:
         self.session = session
         self._settings: dict[str, Any] | None = None  # read once per transaction, kept in step
         self._agents: list[Agent] | None = None  # likewise
+        #: the store generation this transaction sees (a write transaction: the one it advanced
+        #: to) and, in a write transaction, the generation before it (None in a read transaction)
+        self.generation: int | None = None
+        self.previous: int | None = None
         self.world = World(self)
         self.things = Things(self)
         self.beliefs = Beliefs(self)

@@ -61,23 +61,6 @@ def world_objects() -> list[ObjectSpec]:
     return [ObjectSpec(f"o{i}", COLOURS[i % 3], (0.15 * i, 0.12 * i, 0.0)) for i in range(6)]
 
 
-@pytest.fixture(scope="module")
-def template(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    """A store holding the world (made once; each example starts from a copy)."""
-    path = tmp_path_factory.mktemp("template") / "t.db"
-    ctx = AppContext(str(path), now=START)
-    ctx.store(create=True)
-    for a in AGENTS:
-        things.add_agent(ctx, a)
-    for area in AREAS:
-        things.add_area(ctx, area.name, ",".join(str(v) for v in area.box))
-    for o in world_objects():
-        assert o.position is not None
-        things.add_object(ctx, o.name, color=o.color, pos=",".join(str(v) for v in o.position))
-    ctx.close()
-    return path
-
-
 def fresh_mind() -> Mind:
     areas = sorted(AREAS, key=lambda a: a.name)
     mind = Mind(sorted(AGENTS), world_objects(), areas, now=START, touch_times=True)

@@ -128,3 +128,75 @@ def test_a_store_with_data_at_the_first_revision_upgrades_to_the_head_losing_not
             '["allow trash if isColored red"]',)
         assert conn.execute("SELECT count(*) FROM rules").fetchone() == (1,)
     conn.close()
+
+
+def _ownership_layout(path: Path) -> tuple[str, list[str]]:
+    """The ownership table's CREATE statement and its primary key columns, in key order."""
+    with sqlite3.connect(path) as conn:
+        sql = conn.execute("SELECT sql FROM sqlite_master WHERE name = 'ownership'").fetchone()[0]
+        info = conn.execute("PRAGMA table_info(ownership)").fetchall()
+        key = [r[1] for r in sorted(info, key=lambda r: r[5]) if r[5] > 0]
+    conn.close()
+    return sql, key
+
+
+def test_the_generation_revision_keys_beliefs_by_agent_and_back(tmp_path: Path) -> None:
+    path = tmp_path / "g.db"
+    cfg = alembic_config(url=f"sqlite:///{path}")
+    command.upgrade(cfg, known_revisions()[0])
+    with sqlite3.connect(path) as conn:
+        for statement in FIRST_REVISION_DATA:
+            conn.execute(statement)
+    conn.close()
+    command.upgrade(cfg, "0003")
+    sql, key = _ownership_layout(path)
+    assert key == ["agent_id", "object_id"] and "WITHOUT ROWID" in sql.upper()
+    with sqlite3.connect(path) as conn:
+        assert conn.execute("SELECT id, value FROM generation").fetchall() == [(1, 0)]
+        rows = conn.execute("SELECT object_id, agent_id, claim_p, prior_p, prior_source FROM ownership "
+                            "ORDER BY object_id, agent_id").fetchall()
+        indexes = {r[1] for r in conn.execute("PRAGMA index_list(ownership)").fetchall()}
+    conn.close()
+    assert rows == [(1, 1, 1.0, 0.7, "prediction"), (1, 2, None, 0.25, "base-rate"),
+                    (2, 1, None, 0.3, "prediction"), (2, 2, None, 0.25, "base-rate")]
+    assert "ix_ownership_object_id" in indexes
+    command.downgrade(cfg, "0002")
+    sql, key = _ownership_layout(path)
+    assert key == ["object_id", "agent_id"] and "WITHOUT ROWID" not in sql.upper()
+    assert "generation" not in _tables(path)
+    with sqlite3.connect(path) as conn:
+        assert conn.execute("SELECT object_id, agent_id, claim_p, prior_p, prior_source FROM ownership "
+                            "ORDER BY object_id, agent_id").fetchall() == rows
+    conn.close()
+
+
+def test_every_write_transaction_advances_the_generation_and_a_failed_one_does_not(tmp_path: Path) -> None:
+    from ownctl.app import things
+    from ownctl.app.context import AppContext
+    from ownctl.errors import OwnctlError
+
+    ctx = AppContext(str(tmp_path / "s.db"), now=10.0)
+    ctx.store(create=True)
+
+    def generation() -> int:
+        with ctx.read() as tx:
+            return tx.meta.generation()
+
+    try:
+        start = generation()
+        things.add_agent(ctx, "xuan")
+        things.add_object(ctx, "mug", color="red")
+        assert generation() == start + 2
+        try:
+            things.add_object(ctx, "mug")  # fails inside its write transaction: a duplicate name
+        except OwnctlError:
+            pass
+        else:
+            raise AssertionError("a duplicate object was accepted")
+        assert generation() == start + 2  # nothing written, the generation included
+        with ctx.write(None) as tx:  # even a write that logs nothing (the conversation)
+            assert (tx.previous, tx.generation) == (start + 2, start + 3)
+            tx.meta.converse(speaker="xuan")
+        assert generation() == start + 3
+    finally:
+        ctx.close()
