@@ -194,7 +194,8 @@ def play(db: str, writers: int, n: int) -> list[dict[str, Any]]:
     env = {**os.environ, "PYTHONPATH": os.pathsep.join([str(ROOT), os.environ.get("PYTHONPATH", "")])}
     env.pop("OWNCTL_NOW", None)
     pipe = subprocess.PIPE
-    procs = [subprocess.Popen([sys.executable, __file__, "--worker", db, str(k), str(n)], cwd=ROOT, env=env,
+    env["OWNCTL_FLEET_DB"] = db  # not on the command line, where ps would show a password
+    procs = [subprocess.Popen([sys.executable, __file__, "--worker", str(k), str(n)], cwd=ROOT, env=env,
                               stdin=pipe, stdout=pipe, stderr=pipe, text=True)
              for k in range(writers)]
     try:
@@ -278,10 +279,10 @@ def main(argv: Sequence[str] | None = None) -> int:
                         help="a PostgreSQL server URL whose role may create databases "
                         "(default: OWNCTL_TEST_PG)")
     parser.add_argument("--json", action="store_true", help="print one JSON document")
-    parser.add_argument("--worker", nargs=3, metavar=("DB", "K", "N"), help=argparse.SUPPRESS)
+    parser.add_argument("--worker", nargs=2, metavar=("K", "N"), help=argparse.SUPPRESS)
     args = parser.parse_args(argv)
     if args.worker:
-        writer(args.worker[0], int(args.worker[1]), int(args.worker[2]))
+        writer(os.environ["OWNCTL_FLEET_DB"], int(args.worker[0]), int(args.worker[1]))
         return 0
     counts = [int(x) for x in args.writers.split(",") if x.strip()]
     backends = [b.strip() for b in args.backends.split(",") if b.strip()]
