@@ -57,6 +57,7 @@ def build(name: str) -> Any:
     """The click command ``ownctl NAME``, made from its module's function or group."""
     module, attribute = COMMANDS[name]
     target = getattr(importlib.import_module(module), attribute)
+    made: Any
     if isinstance(target, typer.Typer):
         made = typer.main.get_group(target)  # a group even when it has one subcommand
     else:  # a command function: a Typer app of one command gives that command
