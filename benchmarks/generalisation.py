@@ -2,7 +2,7 @@
 allowing everything, on the very same trials.
 
     pip install -r benchmarks/requirements.txt    # ProbFOIL (never a dependency of ownctl)
-    python benchmarks/generalisation.py [--families 100] [--trials 20] [--jobs 2]
+    python benchmarks/generalisation.py [--families 100] [--trials 20] [--jobs 2 | --scheduler ADDRESS]
         [--probfoil-families 20] [--probfoil-trials 10] [--probfoil-noisy-families 10]
         [--probfoil-noisy-trials 5] [--probfoil-budget SECONDS] [--no-probfoil] [--json]
 
@@ -19,7 +19,9 @@ ProbFOIL is slow (about a second per action without noise, 10-30 s with noisy ow
 results are cached per (family seed, condition, trial) in ``benchmarks/data/probfoil.json`` and the
 run resumes from the cache; ``--probfoil-budget`` stops starting new ProbFOIL trials after that many
 seconds (run it with ``nice -n 19`` on a shared machine). Ours, the paper's learner and allowing
-everything run on ``--families`` families of ``--trials`` trials each.
+everything run on ``--families`` families of ``--trials`` trials each, on ``--jobs`` local
+processes or, with ``--scheduler tcp://host:8786``, on the workers of that Dask cluster (the same
+numbers: every trial carries its seed; ProbFOIL stays on this machine, beside its cache).
 
 Prints one table per condition group: mean over families (95% CI over families), worst family,
 the number of family cells below ProbFOIL and below allowing everything, and the paired difference
@@ -47,6 +49,8 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from ownctl.errors import OwnctlError  # noqa: E402
+from ownctl.experiment.cluster import executor  # noqa: E402
 from ownctl.experiment.metrics import ci95, rule_scores  # noqa: E402
 from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, norms_trial  # noqa: E402
 from ownctl.world.families import EVALUATION_SEEDS, norm_family  # noqa: E402
@@ -217,6 +221,8 @@ def main() -> None:
     parser.add_argument("--trials", type=int, default=20)
     parser.add_argument("--family-seed", type=int, default=EVALUATION_SEEDS.start)
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--scheduler", metavar="ADDRESS",
+                        help="run ours, the paper's learner and allow-all on this Dask cluster (tcp://host:8786)")
     parser.add_argument("--probfoil-families", type=int, default=20)
     parser.add_argument("--probfoil-trials", type=int, default=10)
     parser.add_argument("--probfoil-noisy-families", type=int, default=10)
@@ -233,8 +239,11 @@ def main() -> None:
     seeds = [args.family_seed + k for k in range(args.families)]
 
     units = [(s, c, t) for s in seeds for c in range(len(CONDITIONS)) for t in range(args.trials)]
-    with ProcessPoolExecutor(max_workers=args.jobs) as pool:
-        ours = dict(pool.map(run_ours, units, chunksize=20))
+    try:
+        with executor(args.jobs, args.scheduler) as (pool, _):
+            ours = dict(pool.map(run_ours, units, chunksize=20))
+    except OwnctlError as exc:
+        sys.exit(f"generalisation: {exc.message}")
 
     cache_path = Path(args.cache)
     cache: dict[str, Any] = json.loads(cache_path.read_text()) if cache_path.exists() else {}

@@ -7,6 +7,10 @@ as ``ownctl: FILE:LINE: message`` and the batch exits with that line's code (1 u
 error). A ``check`` answering "forbidden" (exit 3) is an answer, not a failure: the batch goes on.
 With ``--json`` the batch prints exactly one document: every line's output (its own JSON document
 when it printed one), and on a failure the failing line with its error.
+
+Nothing is kept between lines but the open store: every line loads what it needs in its own
+transaction, so a long-running batch (``batch -`` reads stdin line by line) sees what other writers
+taught between its lines (docs/architecture.md, section 6).
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ from __future__ import annotations
 import json
 import shlex
 import sys
+from collections.abc import Iterator
 from pathlib import Path
 from typing import Annotated
 
@@ -25,11 +30,13 @@ from ownctl.errors import OwnctlError
 from ownctl.humanize import plural
 
 
-def _lines(file: str) -> list[str]:
+def _lines(file: str) -> Iterator[str]:
+    """The batch's lines: a file's all at once; stdin's one at a time as they arrive, so that a batch
+    fed by another program answers each line before the next is written."""
     if file == "-":
-        return sys.stdin.read().splitlines()
+        return (line.rstrip("\r\n") for line in iter(sys.stdin.readline, ""))
     try:
-        return Path(file).read_text(encoding="utf-8").splitlines()
+        return iter(Path(file).read_text(encoding="utf-8").splitlines())
     except (OSError, UnicodeDecodeError) as exc:
         raise OwnctlError(f"cannot read batch file {file}: {getattr(exc, 'strerror', None) or exc}") from None
 
@@ -83,6 +90,7 @@ def batch(
                             "output": _parsed(done.stdout)})
         else:
             sys.stdout.write(done.stdout)
+            sys.stdout.flush()  # whoever feeds the lines sees each answer before sending the next
         if done.code not in (0, EXIT_FORBIDDEN):
             if json_out:
                 errors = [x for x in done.stderr.splitlines() if x.strip()]

@@ -18,6 +18,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 import typer
 from typer.core import TyperGroup
 
+from ownctl.cli.help import plain_values
 from ownctl.errors import BadValue, OwnctlError
 
 if TYPE_CHECKING:
@@ -239,6 +240,15 @@ class OwnctlGroup(TyperGroup):
         if standalone_mode:
             raise SystemExit(code)
         return code
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        plain_values(self.params)  # --db: no pydantic on the way to a command
+
+    def get_help_option(self, ctx: Any) -> Any:
+        option = super().get_help_option(ctx)
+        plain_values([] if option is None else [option])
+        return option
 
     def make_context(self, info_name: str | None, args: list[str], parent: Any = None, **extra: Any) -> Any:
         original = list(args)

@@ -31,6 +31,11 @@ SeedOpt = Annotated[
 JobsOpt = Annotated[
     int, typer.Option("--jobs", "-j", metavar="N", help="Worker processes (results do not depend on it).")
 ]
+SchedulerOpt = Annotated[
+    str | None,
+    typer.Option("--scheduler", metavar="ADDRESS", help="Run the trials on a Dask cluster: its scheduler's "
+                 "address, e.g. tcp://host:8786 (instead of --jobs; the same results)."),
+]
 WorldOpt = Annotated[
     str | None,
     typer.Option("--world", metavar="FILE", help="A TOML world file with true norms (default: the paper's "
@@ -45,13 +50,13 @@ PlotOpt = Annotated[str | None, typer.Option("--plot", metavar="FILE.png", help=
 
 def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
          json_out: bool, csv: str | None, plot: str | None, quiet: bool, families: int | None = None,
-         family_seed: int | None = None) -> None:
+         family_seed: int | None = None, scheduler: str | None = None) -> None:
     from ownctl.app import experiment as app
 
     bar = None if quiet else _progress_bar(experiment)
     try:  # errors are reported by the command group, like every command's
         result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, bar, families,
-                         family_seed)
+                         family_seed, scheduler=scheduler)
     finally:
         if bar is not None:
             bar.stop()
@@ -95,9 +100,9 @@ def _progress_bar(experiment: str) -> _Bar | None:
 
 @experiment_app.command("norms")
 def norms(
-    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, world: WorldOpt = None,
-    learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None,
-    quiet: QuietOpt = False,
+    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, scheduler: SchedulerOpt = None,
+    world: WorldOpt = None, learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None,
+    plot: PlotOpt = None, quiet: QuietOpt = False,
     families: Annotated[int | None, typer.Option(
         "--families", metavar="N", help="Run on N generated norm families instead of one world "
         "(every action scored, with or without a norm); report the mean over families and the worst."
@@ -111,26 +116,27 @@ def norms(
     Permissions are given on 100, 50 or 25% of the objects, with exact or noisy ownership.
     """
     _run("norms", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet, families,
-         family_seed)
+         family_seed, scheduler)
 
 
 @experiment_app.command("ownership")
 def ownership(
-    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, world: WorldOpt = None,
-    learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None,
-    quiet: QuietOpt = False,
+    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, scheduler: SchedulerOpt = None,
+    world: WorldOpt = None, learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None,
+    plot: PlotOpt = None, quiet: QuietOpt = False,
 ) -> None:
     """Table 2: predict the ownership of held-out objects.
 
     Claims and permissions are given on half of the objects; the other half is predicted.
     """
-    _run("ownership", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet)
+    _run("ownership", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet,
+         scheduler=scheduler)
 
 
 @experiment_app.command("task")
 def task(
-    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, world: WorldOpt = None,
-    learner: LearnerOpt = "ours",
+    trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, scheduler: SchedulerOpt = None,
+    world: WorldOpt = None, learner: LearnerOpt = "ours",
     which: Annotated[
         str, typer.Option("--task", metavar="TASK", help="collectAll, trashAll or both.")
     ] = "both",
@@ -140,7 +146,7 @@ def task(
 
     Counts the robot's mistakes and scores the rules and ownership it learned.
     """
-    _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet)
+    _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, scheduler=scheduler)
 
 
 # -- rendering ------------------------------------------------------------------------------------
@@ -235,5 +241,6 @@ def render(result: ExperimentResult) -> None:
     for note in notes:
         console.print(f"[dim]* {note}[/dim]", markup=True)
     n = len(result.conditions)
+    where = f"scheduler {result.scheduler}" if result.scheduler else f"jobs {result.jobs}"
     console.print(f"{plural(result.trials, 'trial')} x {plural(n, 'condition')} on {result.world} "
-                  f"(seed {result.seed}, jobs {result.jobs}) in {result.seconds:.2f} s")
+                  f"(seed {result.seed}, {where}) in {result.seconds:.2f} s", markup=False)

@@ -5,14 +5,63 @@ rendered by the plain formatter (square brackets in help texts are text, not mar
 and option values show readable metavars (``OBJ``, ``AGENT``, ``P``, ``FILE``) instead of type
 names, and the usage line reads ``ownctl claim [OPTIONS] OBJ AGENT``. Kept free of heavy imports:
 ``ownctl --help`` loads this module.
+
+Parameters convert their values as typer does, through pydantic, except where that cannot change
+the value (:func:`plain_values`): a text argument, a flag, or a number option left at its default. So
+``ownctl check ACTION OBJ`` and ``ownctl claim OBJ AGENT`` never import pydantic (about a third of
+their start-up otherwise); ``--p 0.75`` still converts, and fails, exactly as typer's own.
 """
 
 from __future__ import annotations
 
+from collections.abc import Iterable
+from dataclasses import dataclass
 from typing import Any
 
 import typer
 from typer.core import TyperCommand
+
+try:  # typer's conversion of one parameter's value (typer 0.29); without it, typer's own is used
+    from typer._coercion import RuntimeParam, build_runtime_param
+except ImportError:  # pragma: no cover - another typer
+    RuntimeParam = None  # type: ignore[assignment,misc]
+
+PLAIN_TYPES = (str, bool, int, float)
+
+if RuntimeParam is not None:
+
+    @dataclass(frozen=True)
+    class PlainValue(RuntimeParam):
+        """A value already of the parameter's type is kept as it is (what typer's conversion returns
+        for it); any other goes through typer's conversion, built when first needed."""
+
+        def _coerce_value(self, value: Any, param: Any, ctx: Any) -> Any:
+            if type(value) is self.annotation:
+                return value
+            full = param.__dict__.get("_ownctl_conversion")
+            if full is None:
+                full = param.__dict__["_ownctl_conversion"] = build_runtime_param(param.type_descriptor)
+            return full._coerce_value(value, param=param, ctx=ctx)
+
+
+def _plain(descriptor: Any) -> bool:
+    """Whether typer would convert a value of ``descriptor``'s own type to itself: a bare text or
+    number parameter, without a parser, choices, file, or bounds."""
+    info = descriptor.parameter_info
+    return (descriptor.annotation in PLAIN_TYPES and getattr(info, "parser", None) is None
+            and getattr(info, "click_type", None) is None and descriptor.file_annotation is None
+            and getattr(info, "min", None) is None and getattr(info, "max", None) is None
+            and not descriptor.is_choice)
+
+
+def plain_values(params: Iterable[Any]) -> None:
+    """Give every plain parameter of a command (see :func:`_plain`) the :class:`PlainValue` conversion."""
+    if RuntimeParam is None:
+        return
+    for param in params:
+        descriptor = getattr(param, "type_descriptor", None)
+        if descriptor is not None and getattr(param, "_runtime_param", False) is None and _plain(descriptor):
+            param._runtime_param = PlainValue(descriptor.parameter_info, descriptor.annotation)
 
 
 def metavar(param: Any) -> str:
@@ -25,9 +74,16 @@ class OwnctlCommand(TyperCommand):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)
+        plain_values(self.params)
         for param in self.params:
             if param.param_type_name == "argument" or not getattr(param, "is_flag", False):
                 param.metavar = metavar(param)
+
+    def get_help_option(self, ctx: Any) -> Any:
+        """``--help``, a flag that needs no conversion either."""
+        option = super().get_help_option(ctx)
+        plain_values([] if option is None else [option])
+        return option
 
     def collect_usage_pieces(self, ctx: Any) -> list[str]:
         """``[OPTIONS] OBJ AGENT [WORDS]...``: required arguments bare, optional ones in brackets."""

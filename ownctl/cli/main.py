@@ -1,27 +1,113 @@
 """The ``ownctl`` command: the root group, its global options, and every command registered.
 
-Startup stays light: this module imports typer, click and the CLI modules only; every command
-imports its ``ownctl.app`` module (and with it SQLAlchemy, numpy) when it runs.
+Startup stays light: this module imports typer and the CLI's common pieces only. The root group
+knows its commands by name (:data:`COMMANDS`) and imports a command's CLI module, and builds its
+click command, the first time that command is asked for, so ``ownctl check`` builds ``check``
+alone; ``ownctl --help`` lists (and so builds) them all. Every command imports its ``ownctl.app``
+module (and with it SQLAlchemy, numpy) when it runs.
 """
 
 from __future__ import annotations
 
+import importlib
+from collections.abc import Iterator, MutableMapping
 from functools import lru_cache
 from typing import Annotated, Any
 
 import typer
 
 from ownctl import __version__
-from ownctl.cli import admin, instruct, query, say_cmd, things
-from ownctl.cli.batch import batch
 from ownctl.cli.common import OwnctlGroup, State, clock, command_text
-from ownctl.cli.experiment_cmd import experiment_app
 from ownctl.cli.help import Group
-from ownctl.cli.run_cmd import run as run_task
-from ownctl.cli.scenario_cmd import scenario
+
+#: Every command and command group of ``ownctl`` in the order help lists them: name -> (module,
+#: attribute), a command function or a :class:`~ownctl.cli.help.Group` of subcommands.
+COMMANDS: dict[str, tuple[str, str]] = {
+    "init": ("ownctl.cli.admin", "init"),
+    "claim": ("ownctl.cli.instruct", "claim"),
+    "forbid": ("ownctl.cli.instruct", "forbid"),
+    "allow": ("ownctl.cli.instruct", "allow"),
+    "check": ("ownctl.cli.query", "check"),
+    "owners": ("ownctl.cli.query", "owners"),
+    "log": ("ownctl.cli.query", "log"),
+    "reset": ("ownctl.cli.admin", "reset"),
+    "freeze": ("ownctl.cli.admin", "freeze"),
+    "unfreeze": ("ownctl.cli.admin", "unfreeze"),
+    "disable": ("ownctl.cli.admin", "disable"),
+    "enable": ("ownctl.cli.admin", "enable"),
+    "batch": ("ownctl.cli.batch", "batch"),
+    "say": ("ownctl.cli.say_cmd", "say"),
+    "explain": ("ownctl.cli.say_cmd", "explain"),
+    "run": ("ownctl.cli.run_cmd", "run"),
+    "world": ("ownctl.cli.things", "world"),
+    "agent": ("ownctl.cli.things", "agent"),
+    "object": ("ownctl.cli.things", "obj"),
+    "area": ("ownctl.cli.things", "area"),
+    "claims": ("ownctl.cli.instruct", "claims"),
+    "rules": ("ownctl.cli.query", "rules"),
+    "perms": ("ownctl.cli.query", "perms"),
+    "db": ("ownctl.cli.admin", "db"),
+    "config": ("ownctl.cli.admin", "config"),
+    "scenario": ("ownctl.cli.scenario_cmd", "scenario"),
+    "experiment": ("ownctl.cli.experiment_cmd", "experiment_app"),
+}
+
+
+def build(name: str) -> Any:
+    """The click command ``ownctl NAME``, made from its module's function or group."""
+    module, attribute = COMMANDS[name]
+    target = getattr(importlib.import_module(module), attribute)
+    made: Any
+    if isinstance(target, typer.Typer):
+        made = typer.main.get_group(target)  # a group even when it has one subcommand
+    else:  # a command function: a Typer app of one command gives that command
+        single = Group(help="")
+        single.command(name)(target)
+        made = typer.main.get_command(single)
+    made.name = name
+    return made
+
+
+class Commands(MutableMapping[str, Any]):
+    """The root group's commands: every name of :data:`COMMANDS`, each built when first looked up."""
+
+    def __init__(self) -> None:
+        self.built: dict[str, Any] = {}
+
+    def __getitem__(self, name: str) -> Any:
+        if name not in self.built:
+            if name not in COMMANDS:
+                raise KeyError(name)
+            self.built[name] = build(name)
+        return self.built[name]
+
+    def __setitem__(self, name: str, command: Any) -> None:
+        self.built[name] = command
+
+    def __delitem__(self, name: str) -> None:
+        del self.built[name]
+
+    def __iter__(self) -> Iterator[str]:
+        return iter([*COMMANDS, *(n for n in self.built if n not in COMMANDS)])
+
+    def __len__(self) -> int:
+        return len(set(COMMANDS) | set(self.built))
+
+
+class Root(OwnctlGroup):
+    """``ownctl`` itself: an :class:`~ownctl.cli.common.OwnctlGroup` whose commands are built on demand."""
+
+    def __init__(self, **kwargs: Any) -> None:
+        super().__init__(**kwargs)
+        self.commands = Commands()
+
+    def list_commands(self, ctx: Any) -> list[str]:
+        """The command names, in help order, without building any command."""
+        return list(self.commands)
+
 
 app = Group(
-    cls=OwnctlGroup,
+    cls=Root,
     name="ownctl",
     help="A robot's ownership conscience: who owns what, which actions are forbidden, and why.",
 )
@@ -58,35 +144,6 @@ def main(
     state = State(db=db or None, now=clock(), command=text)
     ctx.obj = state
     ctx.call_on_close(state.close)
-
-
-app.add_typer(things.world, name="world")
-app.add_typer(things.agent, name="agent")
-app.add_typer(things.obj, name="object")
-app.add_typer(things.area, name="area")
-app.add_typer(instruct.claims, name="claims")
-app.add_typer(query.rules, name="rules")
-app.add_typer(query.perms, name="perms")
-app.add_typer(admin.db, name="db")
-app.add_typer(admin.config, name="config")
-app.command("init")(admin.init)
-app.command("claim")(instruct.claim)
-app.command("forbid")(instruct.forbid)
-app.command("allow")(instruct.allow)
-app.command("check")(query.check)
-app.command("owners")(query.owners)
-app.command("log")(query.log)
-app.command("reset")(admin.reset)
-app.command("freeze")(admin.freeze)
-app.command("unfreeze")(admin.unfreeze)
-app.command("disable")(admin.disable)
-app.command("enable")(admin.enable)
-app.command("batch")(batch)
-app.command("say")(say_cmd.say)
-app.command("explain")(say_cmd.explain)
-app.add_typer(scenario, name="scenario")
-app.command("run")(run_task)
-app.add_typer(experiment_app, name="experiment")
 
 
 @lru_cache(maxsize=1)

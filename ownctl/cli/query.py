@@ -36,23 +36,22 @@ def check(
         typer.echo(
             f"{data['decision']}: {action} {obj} (p_forbidden={data['p_forbidden']:.3g}); {report.reason}"
         )
-        cells = [
-            [
-                s["action"],
-                s["decision"],
-                s["decided_by"],
-                s["p_forbidden"],
-                s["threshold"],
-                [r["id"] for r in s["rules"]],
-            ]
-            for s in data["steps"]
-        ]
-        if len(cells) > 1:
-            table(None, ["step", "decision", "decided by", "p_forbidden", "threshold", "rules"], cells)()
+        if len(data["steps"]) > 1:
+            typer.echo(step_lines(data["steps"]))
 
     emit(data, json_out, quiet, human)
     if report.forbidden:
         raise typer.Exit(EXIT_FORBIDDEN)
+
+
+def step_lines(steps: list[dict]) -> str:
+    """Each step's decision on a line of aligned columns (plain text: a decision prints without rich)."""
+    head = ("step", "decision", "decided by", "p_forbidden", "threshold", "rules")
+    rows = [head] + [(s["action"], s["decision"], s["decided_by"], fmt(s["p_forbidden"]), fmt(s["threshold"]),
+                      fmt([r["id"] for r in s["rules"]])) for s in steps]
+    widths = [max(len(row[i]) for row in rows) for i in range(len(head))]
+    return "\n".join("  ".join(cell.ljust(w) for cell, w in zip(row, widths, strict=True)).rstrip()
+                     for row in rows)
 
 
 def owners(

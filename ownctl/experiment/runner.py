@@ -1,9 +1,10 @@
-"""Running an experiment's trials, serially or on a process pool, reproducibly.
+"""Running an experiment's trials, serially, on a process pool or on a Dask cluster, reproducibly.
 
 Trial ``t`` of condition ``c`` (its index in the experiment's full condition list) draws all its
 randomness from ``np.random.default_rng([seed, c, t])``, so results depend only on the seed, never
-on the number of worker processes or the order in which trials finish. Trials are sent to workers
-in chunks (a few per worker) so process overhead stays small.
+on the number of worker processes, the cluster, or the order in which trials finish. Trials are
+sent to workers in chunks (a few per worker) so process overhead stays small
+(:mod:`ownctl.experiment.cluster` picks the workers).
 """
 
 from __future__ import annotations
@@ -11,13 +12,14 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Iterator, Sequence
-from concurrent.futures import ProcessPoolExecutor, as_completed
+from concurrent.futures import as_completed
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ownctl.errors import BadValue, UnknownName
+from ownctl.experiment.cluster import executor
 from ownctl.experiment.norms import WorldFactory
 from ownctl.experiment.registry import Experiment, get_experiment
 from ownctl.experiment.result import TrialResult
@@ -43,6 +45,7 @@ class ExperimentResult:
     seconds: float
     world: str = "paper blocks world"
     extra: dict[str, Any] = field(default_factory=dict)
+    scheduler: str | None = None  # the Dask scheduler the trials ran on (None: this machine)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON document (docs/architecture.md, section 7 shape, plus groups, counts and settings)."""
@@ -53,6 +56,7 @@ class ExperimentResult:
             "trials": self.trials,
             "seed": self.seed,
             "jobs": self.jobs,
+            "scheduler": self.scheduler,
             "learner": self.learner,
             "world": self.world,
             "headline": exp.headline,
@@ -125,14 +129,43 @@ def _chunks(pairs: list[Unit], jobs: int) -> list[list[Unit]]:
     return [pairs[i : i + size] for i in range(0, len(pairs), size)]
 
 
-def check_settings(trials: int, jobs: int, learner: str) -> None:
-    """BadValue / UnknownName for a trial count or job count below 1, or an unknown learner."""
+def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None = None) -> None:
+    """BadValue / UnknownName for a trial count or job count below 1, an unknown learner, or both
+    local jobs and a scheduler."""
     if trials < 1:
         raise BadValue(f"trials must be at least 1, got {trials}")
     if jobs < 1:
         raise BadValue(f"jobs must be at least 1, got {jobs}")
     if learner not in LEARNERS:
         raise UnknownName("learner", learner, LEARNERS)
+    if scheduler is not None and jobs != 1:
+        raise BadValue(f"--jobs {jobs} and --scheduler {scheduler} are alternatives: give one of them")
+    if scheduler is not None and not scheduler.strip():
+        raise BadValue("--scheduler needs an address such as tcp://host:8786")
+
+
+def run_trials(name: str, factories: Sequence[WorldFactory], learner: str, seed: int, units: Sequence[Unit],
+               jobs: int = 1, scheduler: str | None = None,
+               progress: Progress | None = None) -> dict[Unit, tuple[TrialResult, float]]:
+    """Every unit's trial result and its seconds: in this process (``jobs`` 1, no ``scheduler``), on
+    ``jobs`` local processes, or on the Dask cluster of ``scheduler``; the same results for all."""
+    done: dict[Unit, tuple[TrialResult, float]] = {}
+    total = len(units)
+    if jobs == 1 and scheduler is None:
+        for unit, result, secs in _iterate_serial(name, factories, learner, seed, units):
+            done[unit] = (result, secs)
+            if progress:
+                progress(len(done), total)
+        return done
+    with executor(jobs, scheduler) as (pool, slots):
+        futures = [pool.submit(_run_chunk, name, factories, learner, seed, chunk)
+                   for chunk in _chunks(list(units), slots)]
+        for fut in as_completed(futures):
+            for unit, result, secs in fut.result():
+                done[unit] = (result, secs)
+            if progress:
+                progress(len(done), total)
+    return done
 
 
 def run_experiment(
@@ -147,6 +180,7 @@ def run_experiment(
     world: str = "paper blocks world",
     compare: bool = True,
     families: Sequence[NormFamily] = (),
+    scheduler: str | None = None,
 ) -> ExperimentResult:
     """Run ``trials`` trials of every (selected) condition of experiment ``name``.
 
@@ -157,31 +191,18 @@ def run_experiment(
     instead of ``world_factory`` (trial ``t`` of condition ``c`` of family ``s`` draws from
     ``[seed, s, c, t]``), and each condition reports the mean over families, with its 95% interval
     over families, and the worst family (:func:`~ownctl.experiment.summary.summarise_families`).
+    ``scheduler`` (``tcp://host:8786``) runs the trials on that Dask cluster instead of ``jobs``
+    local processes.
     """
     exp = get_experiment(name)
-    check_settings(trials, jobs, learner)
+    check_settings(trials, jobs, learner, scheduler)
     chosen = select_conditions(exp, conditions)
     factories: list[WorldFactory] = list(families) or [world_factory]
     units = [(f, c, t) for f in range(len(factories)) for t in range(trials) for c in chosen]
-    total = len(units)
     start = time.perf_counter()
-    done: dict[Unit, tuple[TrialResult, float]] = {}
     if progress:
-        progress(0, total)
-    if jobs == 1:
-        for unit, result, secs in _iterate_serial(exp.name, factories, learner, seed, units):
-            done[unit] = (result, secs)
-            if progress:
-                progress(len(done), total)
-    else:
-        with ProcessPoolExecutor(max_workers=jobs) as pool:
-            futures = [pool.submit(_run_chunk, exp.name, factories, learner, seed, chunk)
-                       for chunk in _chunks(units, jobs)]
-            for fut in as_completed(futures):
-                for unit, result, secs in fut.result():
-                    done[unit] = (result, secs)
-                if progress:
-                    progress(len(done), total)
+        progress(0, len(units))
+    done = run_trials(exp.name, factories, learner, seed, units, jobs, scheduler, progress)
     per_factory = [[_condition(exp, c, [done[(f, c, t)] for t in range(trials)], compare) for c in chosen]
                    for f in range(len(factories))]
     extra: dict[str, Any] = {"paper_comparable": compare and not families}
@@ -195,7 +216,7 @@ def run_experiment(
         extra["families"] = [_family_dict(fam, per_factory[f]) for f, fam in enumerate(families)]
         world = f"{len(families)} norm families (seeds {families[0].seed}-{families[-1].seed})"
     return ExperimentResult(exp, trials, seed, jobs, learner, tuple(summaries),
-                            time.perf_counter() - start, world, extra)
+                            time.perf_counter() - start, world, extra, scheduler)
 
 
 def _condition(exp: Experiment, c: int, results: Sequence[tuple[TrialResult, float]],

@@ -36,7 +36,10 @@ BUSY_TIMEOUT_MS = 5000
 #: PostgreSQL: writers take this transaction-scoped advisory lock first, so that writes are
 #: serialised in one order (no deadlock, no lost update) as SQLite's BEGIN IMMEDIATE does.
 WRITE_LOCK_KEY = 0x6F776E63  # "ownc"
-LOCK_TIMEOUT_MS = BUSY_TIMEOUT_MS
+#: PostgreSQL serves the writers waiting for the lock in the order they came, so a writer waits its
+#: turn for up to this long (a fleet of 32 robots queues for seconds); giving up sooner would only
+#: send it to the back of the queue when it tries again.
+LOCK_TIMEOUT_MS = 30_000
 #: SQLSTATEs of failures that another writer caused: deadlock, serialisation, lock wait timeout.
 TRANSIENT_SQLSTATES = ("40P01", "40001", "55P03")
 
