@@ -12,7 +12,7 @@ from typing import Annotated, Any
 import typer
 
 from ownctl import __version__
-from ownctl.cli import admin, instruct, query, say_cmd, things
+from ownctl.cli import admin, ask_cmd, instruct, query, say_cmd, things
 from ownctl.cli.batch import batch
 from ownctl.cli.common import OwnctlGroup, State, clock, command_text
 from ownctl.cli.experiment_cmd import experiment_app
@@ -83,6 +83,7 @@ app.command("disable")(admin.disable)
 app.command("enable")(admin.enable)
 app.command("batch")(batch)
 app.command("say")(say_cmd.say)
+app.command("ask")(ask_cmd.ask)
 app.command("explain")(say_cmd.explain)
 app.add_typer(scenario, name="scenario")
 app.command("run")(run_task)
