@@ -15,9 +15,9 @@ budget remains), never the same question twice, and none before the robot holds 
 with no example the posterior over rule sets is its prior over the cheapest rules (every step
 forbidden with probability about 0.6), not a belief about the world, so no value of information
 computed on it is meaningful (docs/asking.md, section 4). The simulated instructor answers from
-the ground truth (:class:`OracleAnswers`), and the answer is taught through :func:`ownctl.mind.ask.apply_answer`, the instructions of any
-claim, permission or norm. The experiment runs Table 3's worlds (the same seeds: budget 0 is
-Table 3) for every strategy and budget.
+the ground truth (:class:`OracleAnswers`), and the answer is taught through
+:func:`ownctl.mind.ask.apply_answer`, the instructions of any claim, permission or norm. The
+experiment runs Table 3's worlds (the same seeds: budget 0 is Table 3) for every strategy and budget.
 """
 
 from __future__ import annotations
