@@ -135,11 +135,20 @@ def task(
         str, typer.Option("--task", metavar="TASK", help="collectAll, trashAll or both.")
     ] = "both",
     json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None, quiet: QuietOpt = False,
+    ask: Annotated[str | None, typer.Option(
+        "--ask", metavar="B,B,...", help="Instead: let the robot ask up to B questions per task (e.g. "
+        "0,1,2,4,8), by value of information, by ownership entropy and at random, on the same seeds."
+    )] = None,
 ) -> None:
     """Table 3: collectAll and trashAll with a correcting instructor.
 
     Counts the robot's mistakes and scores the rules and ownership it learned.
     """
+    if ask is not None:
+        from ownctl.cli.experiment_ask_cmd import run_ask
+
+        run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet)
+        return
     _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet)
 
 
