@@ -53,5 +53,5 @@ def render(result: dict[str, Any]) -> None:
             console.print(f"  budget {p['budget']}: ours - entropy = {p['ours_minus_entropy']:+.2f} "
                           f"± {p['ci95']:.2f} (paired over {result['trials']} trials; ours fewer in "
                           f"{p['better']}, more in {p['worse']})")
-    console.print(f"{result['trials']} trials per task, seed {result['seed']}, min gain {result['min_gain']}, "
-                  f"in {result['seconds']:.1f} s")
+    console.print(f"{result['trials']} trials per task, seed {result['seed']}, "
+                  f"min gain {result['min_gain']}, in {result['seconds']:.1f} s")
