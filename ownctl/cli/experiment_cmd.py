@@ -61,6 +61,10 @@ def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, 
         render(result)
     for path in (csv, plot):
         wrote(path, quiet)
+    if plot is not None and "calibration" in result.extra:
+        from ownctl.app.experiment import reliability_path
+
+        wrote(reliability_path(plot), quiet)
 
 
 class _Bar:
@@ -243,6 +247,10 @@ def render(result: ExperimentResult) -> None:
     notes = [*exp.metrics, *([result.extra["family_note"]] if "family_note" in result.extra else [])]
     for note in notes:
         console.print(f"[dim]* {note}[/dim]", markup=True)
+    for cal in result.extra.get("calibration", ()):
+        console.print(f"calibration {cal['name']}: ECE {cal['ece']:.3f} over {cal['pairs']} held-out pairs; "
+                      f"conformal coverage {cal['coverage']:.3f} (target {cal['coverage_target']}), "
+                      f"mean set size {cal['set_size']:.2f}")
     n = len(result.conditions)
     console.print(f"{plural(result.trials, 'trial')} x {plural(n, 'condition')} on {result.world} "
                   f"(seed {result.seed}, jobs {result.jobs}) in {result.seconds:.2f} s")

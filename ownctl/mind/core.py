@@ -234,16 +234,21 @@ class Mind:
     def _claimed_agents(self) -> list[str]:
         return [a for j, a in enumerate(self.agents) if not np.isnan(self.claims[:, j]).all()]
 
+    def features(self, agent: str) -> tuple[np.ndarray, np.ndarray]:
+        """The agent's predictor inputs: feature rows of every object and which objects carry a
+        claim (docs/architecture.md, section 5)."""
+        j = self._column(agent)
+        ages = np.array([max(0.0, self.now - o.last_touch[agent]) if agent in o.last_touch else np.nan
+                         for o in self.objects])
+        X = agent_features(positions(self.objects), [o.color for o in self.objects], ages,
+                           self.vocab.colors, self.settings.predict)
+        return X, ~np.isnan(self.claims[:, j])
+
     def _predict(self, j: int) -> None:
         if not self.switches.prediction:
             return
         cfg = self.settings.predict
-        agent = self.agents[j]
-        ages = np.array([max(0.0, self.now - o.last_touch[agent]) if agent in o.last_touch else np.nan
-                         for o in self.objects])
-        X = agent_features(positions(self.objects), [o.color for o in self.objects], ages,
-                           self.vocab.colors, cfg)
-        known = ~np.isnan(self.claims[:, j])
+        X, known = self.features(self.agents[j])
         model = KernelOwnershipModel(cfg).fit(X[known], self.claims[known, j])
         self.predicted[:, j] = model.predict_proba(X)
         self.prior_source[:, j] = model.source_
