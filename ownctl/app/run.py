@@ -53,6 +53,12 @@ def check_options(task: str, instructor: str, arm: str, grasp: str, render: str 
         ensure_rendering()  # no working OpenGL: one line naming the package, before anything is written
 
 
+def check_ask(ask: int) -> None:
+    """Refuse a negative question budget (before anything is shown or written)."""
+    if ask < 0:
+        raise BadValue(f"--ask must be at least 0, got {ask}")
+
+
 @dataclass(frozen=True)
 class Interrupt:
     """``utterance`` said by ``speaker`` when the robot is about to do ``action`` on ``object``."""
@@ -237,8 +243,7 @@ def run(
     ``ask``, up to that many questions are asked before objects (docs/asking.md, section 4): the
     oracle answers them, ``instructor="none"`` only lists them."""
     check_options(task, instructor, arm, grasp, render, camera)
-    if ask < 0:
-        raise BadValue(f"--ask must be at least 0, got {ask}")
+    check_ask(ask)
     chosen = get_task(task)
     fresh, empty = _new_world(ctx, seed, layout_seed)
     world = current_world(ctx) if fresh is None else _joined(current_world(ctx), fresh)

@@ -54,6 +54,7 @@ def run(
     from ownctl.app import run as runner
 
     runner.check_options(task, instructor, arm, grasp, render, camera)
+    runner.check_ask(ask)
     live_rows: list[Any] = []
     shown = not (json_out or quiet)
     grid = Table("object", "fate", "reason", "mistake", title=f"{task}", expand=False)
