@@ -24,7 +24,7 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
     first; ``p`` and ``source`` are the decision belief. With ``coverage``, each owner row also has
     ``"conformal"``: its split-conformal set over {owns, does not own} (docs/asking.md, section 7)."""
     with ctx.read() as tx:
-        data = {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id)}
+        data: dict[str, Any] = {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id)}
         if coverage is not None:
             from ownctl.mind.conformal import check_coverage, prediction_sets
 

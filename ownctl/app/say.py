@@ -332,7 +332,7 @@ def answered(ctx: AppContext, utterance: str, lctx: Context) -> tuple[dict[str, 
     instructions = answer_instructions(utterance, pending, lctx)
     if instructions is None:
         return None, None
-    said = "; ".join(i.say() for i in instructions) if instructions else "nothing to learn from that"
+    said = "; ".join(getattr(i, "say", i.text)() for i in instructions) or "nothing to learn from that"
     reply = f"Thank you ({pending['text']}): {said}."
     return pending, Understanding("answer", instructions, reply, form="answer", topic=pending.get("object"))
 

@@ -79,7 +79,8 @@ class RulePosterior:
         """P(rule in the rule set) for every rule of some set with positive probability."""
         member = np.zeros((len(self.index), len(self.rules) + 1))
         np.put_along_axis(member, np.where(self.index >= 0, self.index, len(self.rules)), 1.0, axis=1)
-        mass, occurs = self.probabilities @ member[:, :-1], member[:, :-1].any(axis=0)
+        mass = self.probabilities @ member[:, :-1]
+        occurs = np.asarray(member[:, :-1].any(axis=0)).tolist()
         return {r: float(m) for r, m, o in zip(self.rules, mass, occurs, strict=True) if o}
 
     def p_forbidden(self, frame: Frame) -> np.ndarray:

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import TypeVar
 
 import numpy as np
 
@@ -165,7 +166,7 @@ def _set_table(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
     shape = (len(worlds.bits), frame.n)
     rows = [rule_truth([r], frame, worlds) for r in lay.pool]
     table = np.stack([*rows, np.zeros(shape, dtype=bool)])  # row -1: no rule
-    out = table[lay.index[:, 0]]
+    out: np.ndarray = table[lay.index[:, 0]]
     for c in range(1, lay.index.shape[1]):
         out = out | table[lay.index[:, c]]
     for allow in rp.allows:  # a set minus an allow norm forbids what it forbids outside the norm
@@ -177,8 +178,8 @@ def step_forbidden(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarra
     """(W, n): P(the step is forbidden | ownership world w) for each object, marginalised over the
     rule sets of ``rp`` (the posterior of one action)."""
     table = _set_table(rp, frame, worlds)
-    out: np.ndarray = np.einsum("k,kwn->wn", rp.probabilities, table.astype(float))
-    return np.clip(out, 0.0, 1.0)
+    out: np.ndarray = np.clip(np.einsum("k,kwn->wn", rp.probabilities, table.astype(float)), 0.0, 1.0)
+    return out
 
 
 def worlds_for(mind: Mind, steps: Sequence[str], frame: Frame) -> Worlds:
@@ -249,7 +250,7 @@ def owner_sets(mind: Mind, obj: int | str) -> list[tuple[tuple[str, ...], float]
     unsure = [j for j in range(len(agents)) if SURE < p[j] < 1 - SURE]
     unsure = sorted(sorted(unsure, key=lambda j: (abs(p[j] - 0.5), j))[:MAX_OWNER_AGENTS])
     fixed = [j for j in range(len(agents)) if j not in unsure and p[j] >= 0.5]
-    out = []
+    out: list[tuple[tuple[str, ...], float]] = []
     for bits in range(2 ** len(unsure)):
         chosen = [unsure[k] for k in range(len(unsure)) if bits >> k & 1]
         prob = float(np.prod([p[j] if j in chosen else 1 - p[j] for j in unsure]))
@@ -258,7 +259,11 @@ def owner_sets(mind: Mind, obj: int | str) -> list[tuple[tuple[str, ...], float]
     return _normalised(out)
 
 
-def _normalised(items: list[tuple[object, float]]) -> list:  # type: ignore[type-arg]
+T = TypeVar("T")
+
+
+def _normalised(items: Sequence[tuple[T, float]]) -> list[tuple[T, float]]:
+    """The items at least MIN_ANSWER probable, their probabilities renormalised."""
     kept = [(a, p) for a, p in items if p >= MIN_ANSWER]
     z = sum(p for _, p in kept)
     return [(a, p / z) for a, p in kept] if z > 0 else []
