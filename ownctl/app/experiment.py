@@ -147,7 +147,7 @@ def run(
 
         write_plot(result, plot_path)
         if "calibration" in result.extra:
-            from ownctl.app.experiment_ask import write_reliability
+            from ownctl.app.experiment_plot import write_reliability
 
             write_reliability(result.extra["calibration"], reliability_path(plot_path))
     return result

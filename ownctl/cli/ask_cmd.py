@@ -34,7 +34,7 @@ def ask(
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
-    """The questions that would most reduce the expected mistakes of a task.
+    """The questions that would most reduce a task's mistakes.
 
     Each question ("Whose is OBJ?", "May I ACTION OBJ?", "Does RULE hold?") is listed with its
     expected gain: the expected mistakes now minus after its answer, over the answers' predicted
