@@ -23,6 +23,11 @@ if TYPE_CHECKING:
     from ownctl.world.model import World
 
 TASK_CHOICES = ("collectAll", "trashAll", "both")
+CALIBRATION_NOTE = (
+    "calibration: the held-out (object, agent) pairs of every trial pooled; ece over 10 equal-width "
+    "bins; coverage: share of pairs whose true label is in the split-conformal set (target 0.9; "
+    "calibration scores by leave-one-out over the claimed objects), set_size: its mean size"
+)
 DEFAULT_WORLD = "paper blocks world"
 
 
@@ -133,13 +138,28 @@ def run(
     factory, name, comparable = _world_factory(world)
     result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name,
                             comparable, chosen_families, scheduler)
+    if exp.name == "ownership":
+        from ownctl.experiment.calibration import calibration
+
+        result.extra["calibration"] = calibration(factory, trials, seed, learner)
+        result.extra["calibration_note"] = CALIBRATION_NOTE
     if csv_path is not None:
         write_csv(result, csv_path)
     if plot_path is not None:
         from ownctl.app.experiment_plot import write_plot
 
         write_plot(result, plot_path)
+        if "calibration" in result.extra:
+            from ownctl.app.experiment_plot import write_reliability
+
+            write_reliability(result.extra["calibration"], reliability_path(plot_path))
     return result
+
+
+def reliability_path(plot_path: str | Path) -> Path:
+    """Where ``--plot FILE.png`` of the ownership experiment puts its reliability diagram."""
+    p = Path(plot_path)
+    return p.with_name(f"{p.stem}-reliability{p.suffix or '.png'}")
 
 
 def _families(experiment: str, count: int | None, first: int | None, world: str | Path | None) -> list[Any]:

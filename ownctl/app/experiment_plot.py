@@ -80,3 +80,33 @@ def write_plot(result: ExperimentResult, path: str | Path) -> None:
         raise OwnctlError(f"cannot write the plot file {str(path)!r}: {exc.strerror}") from None
     finally:
         plt.close(fig)
+
+
+def write_reliability(calibration: list[dict[str, Any]], path: str | Path) -> None:
+    """The reliability diagram of each condition: frequency against mean prediction per bin (PNG)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(1, len(calibration), figsize=(3.8 * len(calibration), 3.9), squeeze=False)
+    for ax, cond in zip(axes[0], calibration, strict=True):
+        rows = [r for r in cond["reliability"] if r["count"]]
+        ax.plot([0, 1], [0, 1], color="grey", lw=1, ls="--")
+        ax.bar([(r["lo"] + r["hi"]) / 2 for r in rows], [r["frequency"] for r in rows], width=0.09,
+               color="#4c72b0", alpha=0.8, label="frequency owned")
+        ax.plot([r["mean_p"] for r in rows], [r["frequency"] for r in rows], "o", color="#c44e52",
+                label="(mean p, frequency)")
+        ax.set_title(f"{cond['name']}\nECE {cond['ece']:.3f}, coverage {cond['coverage']:.3f}", fontsize=9)
+        ax.set_xlabel("predicted P(owns)")
+        ax.set_xlim(0, 1)
+        ax.set_ylim(0, 1)
+    axes[0][0].set_ylabel("observed frequency")
+    axes[0][0].legend(fontsize=7, loc="upper left")
+    fig.tight_layout()
+    try:
+        fig.savefig(path, dpi=110)
+    except OSError as exc:
+        raise OwnctlError(f"cannot write the plot file {str(path)!r}: {exc.strerror}") from None
+    finally:
+        plt.close(fig)

@@ -19,11 +19,21 @@ if TYPE_CHECKING:
     from ownctl.store.repo import Tx
 
 
-def owners(ctx: AppContext, obj: str) -> dict[str, Any]:
+def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str, Any]:
     """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}]}``, likeliest
-    first; ``p`` and ``source`` are the decision belief."""
+    first; ``p`` and ``source`` are the decision belief. With ``coverage``, each owner row also has
+    ``"conformal"``: its split-conformal set over {owns, does not own} (docs/asking.md, section 7)."""
     with ctx.read() as tx:
-        return {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id)}
+        data: dict[str, Any] = {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id)}
+        if coverage is not None:
+            from ownctl.mind.conformal import check_coverage, prediction_sets
+
+            check_coverage(coverage)
+            sets = {s.agent: s.as_dict() for s in prediction_sets(load(tx, ctx.now).mind, obj, coverage)}
+            for row in data["owners"]:
+                row["conformal"] = sets[row["agent"]]
+            data["coverage"] = coverage
+        return data
 
 
 def owner_rows(tx: Tx, object_id: int) -> list[dict[str, Any]]:

@@ -53,6 +53,12 @@ def check_options(task: str, instructor: str, arm: str, grasp: str, render: str 
         ensure_rendering()  # no working OpenGL: one line naming the package, before anything is written
 
 
+def check_ask(ask: int) -> None:
+    """Refuse a negative question budget (before anything is shown or written)."""
+    if ask < 0:
+        raise BadValue(f"--ask must be at least 0, got {ask}")
+
+
 @dataclass(frozen=True)
 class Interrupt:
     """``utterance`` said by ``speaker`` when the robot is about to do ``action`` on ``object``."""
@@ -72,6 +78,7 @@ class RunReport:
     wall_seconds: float
     failed_steps: tuple[str, ...]
     loaded_world: bool
+    questions: tuple[dict[str, Any], ...] = ()  # asked with --ask (docs/asking.md, section 4)
 
     @property
     def ok(self) -> bool:
@@ -83,7 +90,7 @@ class RunReport:
         rtf = self.sim_seconds / self.wall_seconds if self.wall_seconds > 0 else 0.0
         return {**self.report.as_dict(), "sim_seconds": self.sim_seconds, "wall_seconds": self.wall_seconds,
                 "real_time_factor": rtf, "failed_steps": list(self.failed_steps),
-                "loaded_world": self.loaded_world}
+                "loaded_world": self.loaded_world, "questions": list(self.questions)}
 
 
 class PhysicsExecutor:
@@ -230,9 +237,13 @@ def run(
     camera: str = "front",
     interrupts: Sequence[Interrupt] = (),
     on_step: Callable[[StepRecord], None] | None = None,
+    ask: int = 0,
 ) -> RunReport:
-    """Play ``task`` on the store's world; persist every object's attempt as it happens."""
+    """Play ``task`` on the store's world; persist every object's attempt as it happens. With
+    ``ask``, up to that many questions are asked before objects (docs/asking.md, section 4): the
+    oracle answers them, ``instructor="none"`` only lists them."""
     check_options(task, instructor, arm, grasp, render, camera)
+    check_ask(ask)
     chosen = get_task(task)
     fresh, empty = _new_world(ctx, seed, layout_seed)
     world = current_world(ctx) if fresh is None else _joined(current_world(ctx), fresh)
@@ -291,8 +302,18 @@ def run(
         persist(record)
         done.append(record.name)
 
+    asker = None
+    if ask:
+        from ownctl.app.settings import ASK_MIN_GAIN
+        from ownctl.experiment.asking import OracleAnswers, QuestionAsker
+        from ownctl.logic.vocab import object_steps
+
+        with ctx.read() as tx:
+            min_gain = float(tx.meta.settings().get("ask.min_gain", ASK_MIN_GAIN))
+        answers = OracleAnswers(world) if instructor == "oracle" else None
+        asker = QuestionAsker(object_steps(chosen.action), "ours", ask, min_gain, answers)
     try:
-        report = run_task(mind, world, chosen, executor, teacher, on_step=saved)
+        report = run_task(mind, world, chosen, executor, teacher, on_step=saved, asker=asker)
     except OwnctlError as exc:
         kept = (f"the {len(done)} object{'s' if len(done) != 1 else ''} attempted before were saved, "
                 "each in its own transaction" if done else "nothing of the run was saved")
@@ -305,4 +326,5 @@ def run(
     wall = time.perf_counter() - start
     sim_seconds = executor.sim_time if physics else 0.0
     failed = tuple(executor.failed) if physics else ()
-    return RunReport(report, sim_seconds, wall, failed, fresh is not None)
+    asked = tuple(a.as_dict() for a in asker.asked) if asker is not None else ()
+    return RunReport(report, sim_seconds, wall, failed, fresh is not None, asked)

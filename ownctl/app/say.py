@@ -280,7 +280,9 @@ def say(
     if speaker is not None:
         check_name("speaker", speaker)  # before the words are read: a bad name is the error to report
     lctx = language_context(ctx, speaker, about)
-    understood = understand(utterance, lctx)
+    pending, understood = answered(ctx, utterance, lctx)
+    if pending is None:
+        understood = understand(utterance, lctx)
     report = SayReport(utterance, understood, lctx.speaker, lctx.about)
     turn = _Turn(ctx, report)
     payload = {"op": "say", "utterance": utterance, "speaker": lctx.speaker, "about": lctx.about,
@@ -298,6 +300,10 @@ def say(
                 tx.world.agent(report.speaker)  # an unknown --as is an error naming the known agents
             action = turn.action if turn.action is not None else lctx.action
             tx.meta.converse(speaker=report.speaker, target=report.target, action=action)
+            if pending is not None:
+                from ownctl.app.ask import clear_pending
+
+                clear_pending(tx, lctx.speaker)
     finally:
         ctx.interface, ctx.command = saved
     for task in turn.tasks:
@@ -310,6 +316,25 @@ def say(
         with ctx.write(None) as tx:
             tx.meta.converse(action=get_task(task.task).action)
     return report
+
+
+def answered(ctx: AppContext, utterance: str, lctx: Context) -> tuple[dict[str, Any] | None, Any]:
+    """The question pending for the speaker and what ``utterance`` means as its answer (an
+    Understanding of intent ``answer``), or (None, None) when nothing is pending or it is no answer
+    (docs/asking.md, section 5)."""
+    from ownctl.app.ask import pending_for
+    from ownctl.language.answers import answer_instructions
+
+    with ctx.read() as tx:
+        pending = pending_for(tx, lctx.speaker)
+    if pending is None:
+        return None, None
+    instructions = answer_instructions(utterance, pending, lctx)
+    if instructions is None:
+        return None, None
+    said = "; ".join(getattr(i, "say", i.text)() for i in instructions) or "nothing to learn from that"
+    reply = f"Thank you ({pending['text']}): {said}."
+    return pending, Understanding("answer", instructions, reply, form="answer", topic=pending.get("object"))
 
 
 def _run_summary(data: dict[str, Any]) -> str:

@@ -4,7 +4,8 @@ Keys: ``threshold`` and ``threshold.ACTION`` (obedience thresholds in [0, 1]), `
 ``frozen.perms`` / ``frozen.rules`` and ``disabled.inference`` / ``disabled.prediction`` (booleans),
 ``learner`` (the rule learner: ``ours`` or ``paper``), ``decide.rules`` (decisions on the most
 probable rule set, ``map``, or on P(forbidden) marginalised over the posterior of rule sets,
-``posterior``).
+``posterior``), ``ask.min_gain`` (the expected mistakes a question must save before the robot
+asks it during a run, a non-negative number; docs/asking.md, section 4).
 Stored values override the defaults of :class:`ownctl.config.Settings`.
 """
 
@@ -21,9 +22,11 @@ FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.predict
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
 LEARNERS = ("ours", "paper")
 DECIDE_RULES = ("map", "posterior")
-KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules")
+KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", "ask.min_gain")
+ASK_MIN_GAIN = 0.05  # the default of ask.min_gain (ownctl.experiment.asking.DEFAULT_MIN_GAIN)
 DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,
-                            "learner": Settings().learn.learner, "decide.rules": Settings().decide_rules}
+                            "learner": Settings().learn.learner, "decide.rules": Settings().decide_rules,
+                            "ask.min_gain": ASK_MIN_GAIN}
 TRUE = ("true", "yes", "on", "1")
 FALSE = ("false", "no", "off", "0")
 
@@ -46,6 +49,17 @@ def probability(what: str, value: float | str) -> float:
     return number
 
 
+def min_gain(value: float | str) -> float:
+    """``value`` as a non-negative number of mistakes; BadValue naming ask.min_gain otherwise."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise BadValue(f"ask.min_gain must be a non-negative number, got {value!r}") from None
+    if math.isnan(number) or math.isinf(number) or number < 0:
+        raise BadValue(f"ask.min_gain must be a non-negative number, got {value!r}")
+    return number
+
+
 def parse_value(key: str, text: str) -> Any:
     """The typed value of ``text`` for ``key``; ``default`` means "remove the override" (None)."""
     check_key(key)
@@ -55,6 +69,8 @@ def parse_value(key: str, text: str) -> Any:
         if text not in DECIDE_RULES:
             raise BadValue(f"unknown decision mode {text!r}; valid: {', '.join(DECIDE_RULES)}", DECIDE_RULES)
         return text
+    if key == "ask.min_gain":
+        return min_gain(text)
     if key == "learner":
         if text not in LEARNERS:
             raise BadValue(f"unknown learner {text!r}; valid learners: {', '.join(LEARNERS)}", LEARNERS)
@@ -71,7 +87,7 @@ def parse_value(key: str, text: str) -> Any:
 def effective(stored: dict[str, Any]) -> dict[str, Any]:
     """Every key with its value: stored, else default (per-action thresholds only when set)."""
     out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k))
-                           for k in ("threshold", "trust", "learner", "decide.rules")}
+                           for k in ("threshold", "trust", "learner", "decide.rules", "ask.min_gain")}
     out.update({k: bool(stored.get(k, False)) for k in FLAGS})
     out.update({k: v for k, v in sorted(stored.items()) if k.startswith("threshold.")})
     return out

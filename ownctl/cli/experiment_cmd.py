@@ -66,6 +66,10 @@ def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, 
         render(result)
     for path in (csv, plot):
         wrote(path, quiet)
+    if plot is not None and "calibration" in result.extra:
+        from ownctl.app.experiment import reliability_path
+
+        wrote(reliability_path(plot), quiet)
 
 
 class _Bar:
@@ -141,11 +145,20 @@ def task(
         str, typer.Option("--task", metavar="TASK", help="collectAll, trashAll or both.")
     ] = "both",
     json_out: JsonOpt = False, csv: CsvOpt = None, plot: PlotOpt = None, quiet: QuietOpt = False,
+    ask: Annotated[str | None, typer.Option(
+        "--ask", metavar="B,B,...", help="Instead: let the robot ask up to B questions per task (e.g. "
+        "0,1,2,4,8), by value of information, by ownership entropy and at random, on the same seeds."
+    )] = None,
 ) -> None:
     """Table 3: collectAll and trashAll with a correcting instructor.
 
     Counts the robot's mistakes and scores the rules and ownership it learned.
     """
+    if ask is not None:
+        from ownctl.cli.experiment_ask_cmd import run_ask
+
+        run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet)
+        return
     _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, scheduler=scheduler)
 
 
@@ -240,6 +253,10 @@ def render(result: ExperimentResult) -> None:
     notes = [*exp.metrics, *([result.extra["family_note"]] if "family_note" in result.extra else [])]
     for note in notes:
         console.print(f"[dim]* {note}[/dim]", markup=True)
+    for cal in result.extra.get("calibration", ()):
+        console.print(f"calibration {cal['name']}: ECE {cal['ece']:.3f} over {cal['pairs']} held-out pairs; "
+                      f"conformal coverage {cal['coverage']:.3f} (target {cal['coverage_target']}), "
+                      f"mean set size {cal['set_size']:.2f}")
     n = len(result.conditions)
     where = f"scheduler {result.scheduler}" if result.scheduler else f"jobs {result.jobs}"
     console.print(f"{plural(result.trials, 'trial')} x {plural(n, 'condition')} on {result.world} "

@@ -37,6 +37,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "enable": ("ownctl.cli.admin", "enable"),
     "batch": ("ownctl.cli.batch", "batch"),
     "say": ("ownctl.cli.say_cmd", "say"),
+    "ask": ("ownctl.cli.ask_cmd", "ask"),
     "explain": ("ownctl.cli.say_cmd", "explain"),
     "run": ("ownctl.cli.run_cmd", "run"),
     "world": ("ownctl.cli.things", "world"),

@@ -63,6 +63,10 @@ def owners(
     min_p: Annotated[
         float, typer.Option("--min", metavar="P", help="With --agent: the least probability listed.")
     ] = 0.5,
+    coverage: Annotated[
+        float | None, typer.Option("--coverage", metavar="P", help="Also each agent's conformal set over "
+                                   "{owns, does not own} holding the truth with probability P (e.g. 0.9).")
+    ] = None,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
@@ -83,16 +87,18 @@ def owners(
             table(f"owned by {agent}", ["object", "p", "source"], [list(r.values()) for r in rows]),
         )
         return
-    data = query.owners(app_ctx(ctx), obj)  # type: ignore[arg-type]
+    if coverage is not None and agent is not None:
+        raise typer.BadParameter("--coverage applies to OBJ, not --agent")
+    data = query.owners(app_ctx(ctx), obj, coverage)  # type: ignore[arg-type]
+    columns = ["agent", "p", "source", "claim", "prior", "posterior"]
     cells = [
         [o["agent"], o["p"], o["source"], o["claim"], o["prior"], o["posterior"]] for o in data["owners"]
     ]
-    emit(
-        data,
-        json_out,
-        quiet,
-        table(f"owners of {obj}", ["agent", "p", "source", "claim", "prior", "posterior"], cells),
-    )
+    if coverage is not None:
+        columns.append(f"set ({coverage:g})")
+        for row, o in zip(cells, data["owners"], strict=True):
+            row.append(" or ".join(o["conformal"]["set"]) or "(empty)")
+    emit(data, json_out, quiet, table(f"owners of {obj}", columns, cells))
 
 
 @rules.command("list")

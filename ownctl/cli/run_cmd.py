@@ -37,6 +37,8 @@ def run(
     ] = "weld",
     render: Annotated[str | None, typer.Option(metavar="FILE", help="Write FILE.png or FILE.mp4.")] = None,
     camera: Annotated[str, typer.Option(help="View to render: front, shoulder or top.")] = "front",
+    ask: Annotated[int, typer.Option("--ask", metavar="N", help="Ask up to N questions before objects, "
+                                     "when one would save ask.min_gain expected mistakes.")] = 0,
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,
 ) -> None:
@@ -52,6 +54,7 @@ def run(
     from ownctl.app import run as runner
 
     runner.check_options(task, instructor, arm, grasp, render, camera)
+    runner.check_ask(ask)
     live_rows: list[Any] = []
     shown = not (json_out or quiet)
     grid = Table("object", "fate", "reason", "mistake", title=f"{task}", expand=False)
@@ -66,7 +69,7 @@ def run(
     def play() -> runner.RunReport:
         return runner.run(app_ctx(ctx), task, instructor=instructor, physics=physics, seed=seed,
                           layout_seed=layout_seed, arm=arm, grasp=grasp, render=render, camera=camera,
-                          on_step=on_step)
+                          on_step=on_step, ask=ask)
 
     if shown:
         with Live(grid, console=console, refresh_per_second=8, transient=False):
@@ -87,6 +90,9 @@ def run(
             f"ownership: accuracy {own['accuracy']:.3f}, F1 {own['f1']:.3f}\n"
             f"sim {data['sim_seconds']:.1f} s, wall {data['wall_seconds']:.2f} s{rtf}"
         )
+        for q in data["questions"]:
+            typer.echo(f"asked before {q['before']}: {q['text']} -> {q['answer'] or '(not answered)'}"
+                       f" (gain {q['gain']:.3f})")
         for failure in data["failed_steps"]:
             typer.echo(f"failed step: {failure}", err=True)
 

@@ -22,7 +22,7 @@ from ownctl.experiment.truth import true_rules
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import parse_norm
 from ownctl.mind import Mind, Switches
-from ownctl.world.model import make_frame
+from ownctl.world.model import World, make_frame
 
 
 @dataclass(frozen=True)
@@ -45,6 +45,20 @@ OWNERSHIP_CONDITIONS = (
 def ownership_trial(make_world: WorldFactory, cond: OwnershipCondition, learner: str,
                     rng: np.random.Generator) -> TrialResult:
     """One trial; groups ``test`` (held-out half) and ``all`` (every object), rows = agents."""
+    mind, world, test = protocol(make_world, cond, learner, rng)
+    truth = world.true_ownership()
+    post = mind.posterior()
+    groups = {
+        "test": {a: ownership_scores(truth[test, j], post[test, j]) for j, a in enumerate(world.agents)},
+        "all": {a: ownership_scores(truth[:, j], post[:, j]) for j, a in enumerate(world.agents)},
+    }
+    return TrialResult(groups)
+
+
+def protocol(make_world: WorldFactory, cond: OwnershipCondition, learner: str,
+             rng: np.random.Generator) -> tuple[Mind, World, np.ndarray]:
+    """The protocol of one trial: the Mind after the claims and permissions on a random half, the
+    world, and the held-out objects (sorted indices)."""
     world = make_world(rng)
     truth = world.true_ownership()
     rules = true_rules(world)
@@ -65,9 +79,4 @@ def ownership_trial(make_world: WorldFactory, cond: OwnershipCondition, learner:
             mind.claim(i, agent, float(truth[i, j]))
         for action in rules:
             mind.permit(action, i, float(answers[action][i]))
-    post = mind.posterior()
-    groups = {
-        "test": {a: ownership_scores(truth[test, j], post[test, j]) for j, a in enumerate(world.agents)},
-        "all": {a: ownership_scores(truth[:, j], post[:, j]) for j, a in enumerate(world.agents)},
-    }
-    return TrialResult(groups)
+    return mind, world, test

@@ -117,6 +117,15 @@ class Instructor(Protocol):
         ...
 
 
+class Asker(Protocol):
+    """Asks questions before the robot acts on an object (docs/asking.md, section 4)."""
+
+    def before(self, mind: Mind, obj: int, remaining: Sequence[int]) -> None:
+        """Ask (and have answered) questions before acting on ``obj``; ``remaining`` are the
+        objects the task will still attempt, ``obj`` first."""
+        ...
+
+
 class SilentInstructor:
     """No instructor: the robot acts on its own decisions and learns nothing."""
 
@@ -146,8 +155,10 @@ def run_task(
     executor: Executor,
     instructor: Instructor,
     on_step: Callable[[StepRecord], None] | None = None,
+    asker: Asker | None = None,
 ) -> TaskReport:
-    """Run ``task`` over every object of ``mind`` (whose objects are the world's, in order)."""
+    """Run ``task`` over every object of ``mind`` (whose objects are the world's, in order);
+    ``asker`` may ask questions before each attempt."""
     task = get_task(task) if isinstance(task, str) else task
     target = area_named(mind.areas, task.area)
     truth = TrueNorms(world)
@@ -158,12 +169,19 @@ def run_task(
         if inside(target, mind.objects[i].position):
             record = StepRecord(i, name, "done", reason=f"already in {task.area}")
         else:
+            if asker is not None:
+                asker.before(mind, i, remaining(mind, target, i))
             record = _attempt(mind, truth, task, steps, i, executor, instructor)
             _sync(mind, executor)
         records.append(record)
         if on_step is not None:
             on_step(record)
     return _report(mind, truth, task, steps, records)
+
+
+def remaining(mind: Mind, target: Area, start: int) -> list[int]:
+    """The objects from ``start`` on that are not yet in the task's area (those it will attempt)."""
+    return [k for k in range(start, len(mind.objects)) if not inside(target, mind.objects[k].position)]
 
 
 def _attempt(mind: Mind, truth: TrueNorms, task: Task, steps: tuple[str, ...], i: int,

@@ -22,6 +22,7 @@ marginalised over rule sets (:meth:`RulePosterior.p_forbidden`).
 
 from __future__ import annotations
 
+import functools
 import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -40,6 +41,7 @@ MAX_RULES = 3  # rules per set beyond the given ones
 POOL = 40  # candidate rules of :func:`rule_posterior`
 
 
+@functools.lru_cache(maxsize=65536)
 def rule_implies(a: Rule, b: Rule) -> bool:
     """Whether every object ``a`` holds for is one ``b`` holds for (each literal of ``b`` follows from
     a literal of ``a``)."""
@@ -50,28 +52,36 @@ def rule_implies(a: Rule, b: Rule) -> bool:
 class RulePosterior:
     """A normalised posterior over rule sets: ``sets[k]`` has probability ``probabilities[k]``.
 
-    ``log_weights`` are the unnormalised log posteriors (log prior + log likelihood, up to one
-    constant); ``log_evidence`` is their log-sum-exp. Each set includes the given rules.
+    Set ``k`` is ``rules[index[k]]`` (the distinct rules of the space, given rules first; -1 pads a
+    smaller set). ``log_weights`` are the unnormalised log posteriors (log prior + log likelihood,
+    up to one constant); ``log_evidence`` is their log-sum-exp. Each set includes the given rules.
     """
 
     action: str
-    sets: tuple[tuple[Rule, ...], ...]
+    rules: tuple[Rule, ...]
+    index: np.ndarray
     log_weights: np.ndarray
     probabilities: np.ndarray
     log_evidence: float
     allows: tuple[Rule, ...] = ()
 
+    @functools.cached_property
+    def sets(self) -> tuple[tuple[Rule, ...], ...]:
+        """Every rule set, in the space's order."""
+        return tuple(tuple(self.rules[i] for i in row if i >= 0) for row in self.index.tolist())
+
     def map(self) -> tuple[Rule, ...]:
         """The most probable rule set (the first, in enumeration order, on ties)."""
-        return self.sets[int(np.argmax(self.log_weights))]
+        row = self.index[int(np.argmax(self.log_weights))]
+        return tuple(self.rules[i] for i in row if i >= 0)
 
     def rule_probabilities(self) -> dict[Rule, float]:
         """P(rule in the rule set) for every rule of some set with positive probability."""
-        out: dict[Rule, float] = {}
-        for rules, p in zip(self.sets, self.probabilities, strict=True):
-            for r in rules:
-                out[r] = out.get(r, 0.0) + float(p)
-        return out
+        member = np.zeros((len(self.index), len(self.rules) + 1))
+        np.put_along_axis(member, np.where(self.index >= 0, self.index, len(self.rules)), 1.0, axis=1)
+        mass = self.probabilities @ member[:, :-1]
+        occurs = np.asarray(member[:, :-1].any(axis=0)).tolist()
+        return {r: float(m) for r, m, o in zip(self.rules, mass, occurs, strict=True) if o}
 
     def p_forbidden(self, frame: Frame) -> np.ndarray:
         """P(the action is forbidden) for every object of ``frame``, marginalised over rule sets
@@ -109,24 +119,47 @@ class RuleSpace:
 
     def sets(self) -> list[tuple[int, ...]]:
         """Every set as pool indices, by size then in lexicographic order."""
-        m = len(self.pool)
-        clash = np.zeros((m, m), dtype=bool)
-        for i, j in itertools.combinations(range(m), 2):
-            a, b = self.pool[i], self.pool[j]
-            clash[i, j] = clash[j, i] = rule_implies(a, b) or rule_implies(b, a)
-        out: list[tuple[int, ...]] = [()]
-        level: list[tuple[int, ...]] = [()]
-        for _ in range(self.max_rules):
-            level = [(*s, j) for s in level for j in range((s[-1] + 1) if s else 0, m)
-                     if not any(clash[i, j] for i in s)]
-            out += level
-        return out
+        return [tuple(int(x) for x in row if x >= 0) for row in self.padded()]
+
+    def padded(self) -> np.ndarray:
+        """:meth:`sets` as a (K, max_rules) array of pool indices, -1 padding (read-only)."""
+        return _sets(self.pool, self.max_rules)
+
+
+@functools.lru_cache(maxsize=512)
+def _sets(pool: tuple[Rule, ...], max_rules: int) -> np.ndarray:
+    """:meth:`RuleSpace.padded`, made once per pool (a pure function of the pool's rules)."""
+    m = len(pool)
+    clash = np.zeros((m, m), dtype=bool)
+    for i, j in itertools.combinations(range(m), 2):
+        a, b = pool[i], pool[j]
+        clash[i, j] = clash[j, i] = rule_implies(a, b) or rule_implies(b, a)
+    width = max(1, max_rules)
+    out = [np.full((1, width), -1, dtype=int)]
+    level = np.zeros((1, 0), dtype=int)  # the sets of one size, as rows in lexicographic order
+    above = np.arange(m)[None, :]
+    for size in range(max_rules):
+        last = level[:, -1:] if size else np.full((len(level), 1), -1)
+        free = (above > last) & ~clash[level].any(axis=1) if size else (above > last)
+        rows, cols = np.nonzero(free)  # row-major: each set's extensions in ascending order
+        level = np.hstack([level[rows], cols[:, None]])
+        out.append(np.hstack([level, np.full((len(level), width - size - 1), -1, dtype=int)]))
+    table = np.vstack(out)
+    table.setflags(write=False)
+    return table
 
 
 def every_rule(action: str, atoms: Sequence[Literal], max_length: int) -> tuple[Rule, ...]:
     """Every satisfiable rule without implied literals over ``atoms``, up to ``max_length`` literals,
     shortest first, then in canonical order."""
-    atoms = tuple(atoms)
+    return _every_rule(action, tuple(atoms), max_length)[0]
+
+
+@functools.lru_cache(maxsize=256)
+def _every_rule(action: str, atoms: tuple[Literal, ...], max_length: int
+                ) -> tuple[tuple[Rule, ...], np.ndarray]:
+    """:func:`every_rule` and each rule's literals as indices into ``literal_list(atoms)``, padded
+    with -1 to ``max_length`` columns (made once per vocabulary)."""
     lits = literal_list(atoms)
     ok = compatible(atoms)
     out: list[tuple[int, ...]] = [()]
@@ -134,41 +167,58 @@ def every_rule(action: str, atoms: Sequence[Literal], max_length: int) -> tuple[
     for _ in range(max_length):
         level = [(*s, int(x)) for s in level for x in extensions(ok, s, s[-1] // 2 + 1 if s else 0)]
         out += level
-    return tuple(Rule(action, tuple(lits[x] for x in s)) for s in out)
+    index = np.full((len(out), max(1, max_length)), -1, dtype=int)
+    for k, s in enumerate(out):
+        index[k, : len(s)] = s
+    index.setflags(write=False)
+    return tuple(Rule(action, tuple(lits[x] for x in s)) for s in out), index
 
 
-def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: Sequence[tuple[int, ...]]
-                 ) -> np.ndarray:
-    """Unnormalised log posterior of each set (log prior + log likelihood), vectorised by size."""
+def pool_truth(ev: Evidence, action: str, atoms: Sequence[Literal], max_length: int
+               ) -> tuple[tuple[Rule, ...], np.ndarray]:
+    """Every rule of :func:`every_rule` with its (R, W, n) truth on the examples, vectorised over
+    rules (equal to stacking ``ev.truth(rule)``)."""
+    pool, index = _every_rule(action, tuple(atoms), max_length)
+    lits = literal_list(tuple(atoms))
+    shape = (len(ev.worlds.bits), ev.n)
+    table = np.concatenate([ev.literal_stack(lits), np.ones((1, *shape), dtype=bool)])  # row -1: true
+    truth = table[index[:, 0]]
+    for c in range(1, index.shape[1]):
+        truth = truth & table[index[:, c]]
+    return pool, truth
+
+
+def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray) -> np.ndarray:
+    """Unnormalised log posterior of each set (log prior + log likelihood); ``sets`` padded with -1."""
     shape = ev.worlds.weights.shape
-    truth = np.stack([ev.truth(r) for r in space.pool]) if space.pool else np.zeros((0, *shape), dtype=bool)
+    rows = [ev.truth(r) for r in space.pool]
+    truth = np.stack([*rows, np.zeros(shape, dtype=bool)])  # row -1: no rule
     base = ev.union(space.given)
-    costs = np.array([model.cost(len(r.literals)) for r in space.pool])
+    costs = np.array([*(model.cost(len(r.literals)) for r in space.pool), 0.0])
     out = np.empty(len(sets))
-    by_size: dict[int, list[int]] = {}
-    for k, s in enumerate(sets):
-        by_size.setdefault(len(s), []).append(k)
-    for size, ks in by_size.items():
-        index = np.array([sets[k] for k in ks], dtype=int).reshape(len(ks), size)
-        union = np.broadcast_to(base, (len(ks), *base.shape)).copy()
-        for c in range(size):
+    for start in range(0, len(sets), 4096):  # in blocks, to bound memory
+        index = sets[start : start + 4096]
+        union = np.broadcast_to(base, (len(index), *base.shape)).copy()
+        for c in range(index.shape[1]):
             union |= truth[index[:, c]]
         q = np.clip((union * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
         nll = model.nll_terms(ev.t, q).sum(axis=-1)
-        out[ks] = -nll - costs[index].sum(axis=1)
+        out[start : start + len(index)] = -nll - costs[index].sum(axis=1)
     return out
 
 
 def posterior(ev: Evidence, action: str, space: RuleSpace, model: Model,
               allows: Sequence[Rule] = ()) -> RulePosterior:
     """The exact posterior of the stated model over the rule sets of ``space``."""
-    sets = space.sets()
+    sets = space.padded()
     logw = _log_weights(ev, model, space, sets)
     top = float(logw.max())
     weights = np.exp(logw - top)
     z = float(weights.sum())
-    rules = tuple(tuple((*space.given, *(space.pool[i] for i in s))) for s in sets)
-    return RulePosterior(action, rules, logw, weights / z, top + float(np.log(z)), tuple(allows))
+    every = (*space.given, *space.pool)
+    g = len(space.given)
+    index = np.hstack([np.broadcast_to(np.arange(g), (len(sets), g)), np.where(sets >= 0, sets + g, -1)])
+    return RulePosterior(action, every, index, logw, weights / z, top + float(np.log(z)), tuple(allows))
 
 
 def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: Model, max_length: int,
@@ -176,9 +226,9 @@ def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: 
     """The ``size`` rules (up to ``max_length`` literals) whose addition most raises the posterior,
     alone or next to all but one of the rules ``around`` (so alternatives to each of them compete),
     with the rules ``around`` themselves; ties in canonical order."""
-    pool = every_rule(action, atoms, max_length)
-    truth = np.stack([ev.truth(r) for r in pool])
-    costs = np.array([model.cost(len(r.literals)) for r in pool])
+    pool, truth = pool_truth(ev, action, atoms, max_length)
+    lengths = (_every_rule(action, tuple(atoms), max_length)[1] >= 0).sum(axis=1)
+    costs = np.array([model.cost(n) for n in range(max_length + 1)])[lengths]
     chosen: dict[Rule, None] = {r: None for r in around}
     contexts = [()] + [tuple(x for x in around if x != r) for r in around]
     per = max(1, size // len(contexts))

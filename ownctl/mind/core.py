@@ -27,6 +27,7 @@ every object and is refused on a partial Mind.
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -305,16 +306,21 @@ class Mind:
     def _claimed_agents(self) -> list[str]:
         return [a for j, a in enumerate(self.agents) if not np.isnan(self.claims[:, j]).all()]
 
+    def features(self, agent: str) -> tuple[np.ndarray, np.ndarray]:
+        """The agent's predictor inputs: feature rows of every object and which objects carry a
+        claim (docs/architecture.md, section 5)."""
+        j = self._column(agent)
+        seen = self.percepts()
+        times = seen.touch_times(agent)
+        ages = np.maximum(0.0, self.now - times)  # NaN (never touched) stays NaN
+        X = agent_features(seen.positions, seen.colors, ages, self.vocab.colors, self.settings.predict)
+        return X, ~np.isnan(self.claims[:, j])
+
     def _predict(self, j: int) -> None:
         if not self.switches.prediction:
             return
         cfg = self.settings.predict
-        agent = self.agents[j]
-        seen = self.percepts()
-        times = seen.touch_times(agent)
-        ages = np.maximum(0.0, self.now - times)  # NaN (never touched) stays NaN
-        X = agent_features(seen.positions, seen.colors, ages, self.vocab.colors, cfg)
-        known = ~np.isnan(self.claims[:, j])
+        X, known = self.features(self.agents[j])
         model = KernelOwnershipModel(cfg).fit(X[known], self.claims[known, j])
         self.predicted[:, j] = model.predict_proba(X)
         self.prior_source[:, j] = model.source_
@@ -386,6 +392,29 @@ class Mind:
         self._posterior = None
         self._inferred = None
         self._rule_posteriors = {}
+
+    def _keep_posteriors(self, action: str) -> dict[str, RulePosterior]:
+        """The cached rule posteriors of every action but ``action``: an instruction about one
+        action changes neither the priors nor another action's examples and rules, so theirs stay."""
+        return {a: p for a, p in self._rule_posteriors.items() if a != action}
+
+    def fork(self) -> Mind:
+        """An independent copy to try instructions on (what-if questions, ``ownctl.mind.ask``):
+        beliefs, permissions, rules and switches are copied, immutable parts and caches shared."""
+        new = copy.copy(self)
+        new.switches = replace(self.switches)
+        new.objects, new.areas, new.index = list(self.objects), list(self.areas), dict(self.index)
+        new.claims, new.predicted = self.claims.copy(), self.predicted.copy()
+        new.prior_source = self.prior_source.copy()
+        new.claim_info = dict(self.claim_info)
+        new.perms = {a: dict(g) for a, g in self.perms.items()}
+        new.rules = dict(self.rules)
+        new.allows = {a: list(r) for a, r in self.allows.items()}
+        new.info = {a: dict(i) for a, i in self.info.items()}
+        new._rule_posteriors = dict(self._rule_posteriors)
+        new._stale = set(self._stale)
+        new._edited, new._respecified = set(self._edited), set(self._respecified)
+        return new
 
     def rule_posterior(self, action: str) -> RulePosterior:
         """The posterior over the action's rule sets given its permissions (prior ownership), around
@@ -526,10 +555,12 @@ class Mind:
             return None
         i = self.obj(obj)
         name = self.objects[i].name
+        kept = self._keep_posteriors(action)
         self.perms[action].pop(name, None)
         self._seq += 1
         self.perms[action][name] = Given(float(value), self._seq, self.objects[i], speaker, self.now)
         self._changed()
+        self._rule_posteriors.update(kept)
         if self.switches.frozen_rules:
             return None
         ev, idx = self.evidence(action)
@@ -537,6 +568,7 @@ class Mind:
                                self.vocab, self.settings.learn, self.given(action))
         if out.induced and out.rules != self.rules[action]:
             self._set_rules(action, out.rules, ev, idx, {})
+            self._rule_posteriors.update(kept)
         return out
 
     def instruct(self, norm: Norm, speaker: str | None = None) -> NormResult | None:
@@ -547,6 +579,7 @@ class Mind:
         if self.switches.frozen_rules:
             return None
         action = norm.rule.action
+        kept = self._keep_posteriors(action)
         ev, idx = self.evidence(action)
         before, old_given = self.rules[action], self.given(action)
         out = learn_norm(norm, before, ev, self.vocab, self.settings.learn, self.allows[action], old_given)
@@ -564,6 +597,7 @@ class Mind:
         if norm.sign == "allow" and norm.rule not in self.allows[action]:
             self.allows[action].append(norm.rule)
             self.info[action][norm.rule] = RuleInfo("allow", {"given": norm.text(), "speaker": speaker})
+        self._rule_posteriors.update(kept)
         added = tuple(r for r in self.rules[action] if r not in before)
         removed = tuple(r for r in before if r not in self.rules[action])
         return NormResult(out, added, removed)

@@ -1,0 +1,57 @@
+"""``ownctl ask``: the questions that would most reduce the robot's expected mistakes, or put the best.
+
+Parses the options, calls :mod:`ownctl.app.ask` once and renders a table or one JSON document
+(docs/asking.md). Listing writes nothing; ``--put`` stores the best question as pending for the
+speaker, whose next ``ownctl say`` is read as its answer.
+"""
+
+from __future__ import annotations
+
+from typing import Annotated
+
+import typer
+
+from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
+
+
+def ask(
+    ctx: typer.Context,
+    task: Annotated[
+        str, typer.Option("--task", metavar="TASK", help="trashAll, collectAll or an object action "
+                          "(find, pickUp, trash, collect): whose decisions the questions are for.")
+    ] = "trashAll",
+    objects: Annotated[
+        str | None, typer.Option("--objects", metavar="OBJ,OBJ", help="Only these objects (default: those "
+                                 "the task would still act on; every object for an action).")
+    ] = None,
+    top: Annotated[int, typer.Option("--top", metavar="K", help="How many questions to list.")] = 3,
+    put: Annotated[bool, typer.Option("--put", help="Put the best question to the speaker: ownctl say "
+                                      "then reads their next words as the answer.")] = False,
+    speaker: Annotated[
+        str | None, typer.Option("--as", metavar="AGENT", help="With --put: whom to ask (default: the "
+                                 "current speaker).")
+    ] = None,
+    json_out: JsonOpt = False,
+    quiet: QuietOpt = False,
+) -> None:
+    """The questions that would most reduce a task's mistakes.
+
+    Each question ("Whose is OBJ?", "May I ACTION OBJ?", "Does RULE hold?") is listed with its
+    expected gain: the expected mistakes now minus after its answer, over the answers' predicted
+    probabilities.
+    """
+    from ownctl.app import ask as app
+
+    names = None if objects is None else [o.strip() for o in objects.split(",") if o.strip()]
+    if put:
+        done = app.put(app_ctx(ctx), task, names, speaker)
+        emit(done.data, json_out, quiet, done.message)
+        return
+    if speaker is not None:
+        raise typer.BadParameter("--as only applies with --put")
+    data = app.questions(app_ctx(ctx), task, names, top)
+    rows = [[q["text"], q["gain"], ", ".join(f"{a['answer']} ({a['p']:.2f})" for a in q["answers"])]
+            for q in data["questions"]]
+    title = (f"{data['task']}: {data['expected_mistakes']:.2f} expected mistakes on "
+             f"{len(data['objects'])} objects")
+    emit(data, json_out, quiet, table(title, ["question", "gain", "answers (p)"], rows))

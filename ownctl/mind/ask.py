@@ -1,0 +1,386 @@
+"""Expected mistakes of a task and the question that most reduces them (docs/asking.md).
+
+Pure core: no I/O. :func:`expected_mistakes` is the expected number of wrong decisions the
+:class:`~ownctl.mind.Mind` makes acting on its current beliefs, without further learning, on a list
+of objects for one action's object steps (acting where a step is forbidden, refusing where every
+step is allowed), exactly from the posterior over ownership (independent atoms) and the posterior
+over each step's rule sets (:meth:`Mind.rule_posterior`). Rule sets of different actions are
+independent given the permissions; within one object the steps share its ownership atoms, so each
+object's P(forbidden) is computed on the joint enumeration of its atoms (docs/asking.md, section 1).
+
+A :class:`Question` is ``whose OBJ``, ``may STEP OBJ`` or ``rule RULE``; its possible answers
+(:func:`answers`) carry their predicted probability; :func:`apply_answer` teaches an answer to a Mind
+through the same instructions as any claim, permission or norm. :func:`value_of_information` is
+``EM(now) - sum_a P(a) EM(after a)``, each ``after a`` on a fork of the Mind; :func:`best_questions`
+ranks the candidates (docs/asking.md, sections 2-3).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import TypeVar
+
+import numpy as np
+
+from ownctl.learn.model import LABEL_NOISE
+from ownctl.learn.posterior import RulePosterior
+from ownctl.logic.frame import Frame
+from ownctl.logic.prob import OTHER, Worlds, enumerate_worlds, p_forbidden, relevant_atoms, rule_truth
+from ownctl.logic.rules import Norm, Rule
+from ownctl.mind.core import PERMISSION_CUT, Mind
+
+KINDS = ("may", "whose", "rule")  # tie order between kinds of question
+HOLDS = ("yes", "no", "partly")
+#: candidate pruning (docs/asking.md, section 3)
+TOP_OBJECTS = 3  # objects asked about: the most likely wrong decisions among those still to visit
+TOP_RULES = 2  # rules asked about per step: the most uncertain rules of its posterior
+MAX_OWNER_AGENTS = 4  # owner sets of at most this many uncertain agents are enumerated
+SURE = 0.01  # an agent with posterior within SURE of 0 or 1 is taken as known in owner sets
+MIN_ANSWER = 1e-4  # answers less probable than this are dropped (the rest renormalised)
+
+
+@dataclass(frozen=True)
+class Question:
+    """``whose`` OBJ (answered with its owner set), ``may`` STEP OBJ (a permission) or ``rule``
+    RULE (yes: the rule is stated; no: its allow norm is stated; partly: nothing is taught)."""
+
+    kind: str
+    object: str | None = None
+    action: str | None = None
+    rule: Rule | None = None
+
+    def text(self) -> str:
+        """The question as the robot asks it."""
+        if self.kind == "whose":
+            return f"Whose is {self.object}?"
+        if self.kind == "may":
+            return f"May I {self.action} {self.object}?"
+        assert self.rule is not None
+        return f"Does '{self.rule.text()}' hold?"
+
+    def as_dict(self) -> dict[str, str | None]:
+        """``{"kind", "object", "action", "rule", "text"}``."""
+        return {"kind": self.kind, "object": self.object, "action": self.action,
+                "rule": self.rule.text() if self.rule else None, "text": self.text()}
+
+    def sort_key(self) -> tuple[int, str, str, str]:
+        """Deterministic order of questions of equal gain: kind (may, whose, rule), then object,
+        action and rule text."""
+        return (KINDS.index(self.kind), self.object or "", self.action or "",
+                self.rule.text() if self.rule else "")
+
+
+@dataclass(frozen=True)
+class Answer:
+    """One possible answer: ``owners`` (whose), ``forbid`` (may) or ``holds`` (rule)."""
+
+    question: Question
+    owners: tuple[str, ...] | None = None
+    forbid: bool | None = None
+    holds: str | None = None
+
+    def text(self) -> str:
+        """The answer in words."""
+        q = self.question
+        if q.kind == "whose":
+            return f"{q.object} belongs to {' and '.join(self.owners)}" if self.owners else "nobody's"
+        if q.kind == "may":
+            return "no, you may not" if self.forbid else "yes, you may"
+        return str(self.holds)
+
+
+@dataclass(frozen=True)
+class Expectation:
+    """Per object of the task: the decision (forbidden), P(forbidden) and P(the decision is wrong)."""
+
+    objects: tuple[str, ...]
+    decisions: np.ndarray
+    p_forbidden: np.ndarray
+    p_wrong: np.ndarray
+
+    @property
+    def total(self) -> float:
+        """The expected number of mistakes: the sum of the per-object probabilities."""
+        return float(self.p_wrong.sum())
+
+
+@dataclass(frozen=True)
+class Scored:
+    """A question with its value of information and its answers' probabilities and outcomes."""
+
+    question: Question
+    gain: float
+    before: float
+    answers: tuple[tuple[Answer, float, float], ...]  # (answer, P(answer), expected mistakes after)
+
+    def as_dict(self) -> dict[str, object]:
+        """The ``ask --json`` row: the question, its gain and each answer."""
+        return {**self.question.as_dict(), "gain": self.gain, "expected_mistakes": self.before,
+                "answers": [{"answer": a.text(), "p": p, "expected_mistakes": em}
+                            for a, p, em in self.answers]}
+
+
+# -- the joint of one step's rule sets and the ownership worlds -----------------------------------
+@dataclass(frozen=True)
+class _Layout:
+    """The rule sets of one posterior as indices into its distinct rules (-1 pads a smaller set)."""
+
+    pool: tuple[Rule, ...]
+    index: np.ndarray  # (K, max set size)
+    named: tuple[str, ...]  # agents any rule or allow norm names
+
+
+_LAYOUTS: dict[int, tuple[RulePosterior, _Layout]] = {}
+
+
+def _layout(rp: RulePosterior) -> _Layout:
+    """The layout of ``rp``'s sets (kept for the last few posteriors seen; a pure function)."""
+    hit = _LAYOUTS.get(id(rp))
+    if hit is not None and hit[0] is rp:
+        return hit[1]
+    if rp.index is not None:
+        pool, index = rp.rules, rp.index
+    else:
+        pool = tuple(dict.fromkeys(r for s in rp.sets for r in s))
+        where = {r: k for k, r in enumerate(pool)}
+        width = max((len(s) for s in rp.sets), default=0)
+        index = np.full((len(rp.sets), max(1, width)), -1, dtype=int)
+        for k, s in enumerate(rp.sets):
+            index[k, : len(s)] = [where[r] for r in s]
+    named, _ = relevant_atoms([pool, rp.allows])
+    out = _Layout(pool, index, named)
+    if len(_LAYOUTS) >= 64:
+        _LAYOUTS.pop(next(iter(_LAYOUTS)))
+    _LAYOUTS[id(rp)] = (rp, out)
+    return out
+
+
+def _named(posteriors: Sequence[RulePosterior]) -> tuple[str, ...]:
+    return tuple(sorted({a for rp in posteriors for a in _layout(rp).named}))
+
+
+def _set_table(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
+    """(K, W, n) truth of each rule set of ``rp`` (minus its allow norms) in every world."""
+    lay = _layout(rp)
+    shape = (len(worlds.bits), frame.n)
+    rows = [rule_truth([r], frame, worlds) for r in lay.pool]
+    table = np.stack([*rows, np.zeros(shape, dtype=bool)])  # row -1: no rule
+    out: np.ndarray = table[lay.index[:, 0]]
+    for c in range(1, lay.index.shape[1]):
+        out = out | table[lay.index[:, c]]
+    for allow in rp.allows:  # a set minus an allow norm forbids what it forbids outside the norm
+        out &= ~rule_truth([allow], frame, worlds)[None]
+    return out
+
+
+def step_forbidden(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
+    """(W, n): P(the step is forbidden | ownership world w) for each object, marginalised over the
+    rule sets of ``rp`` (the posterior of one action)."""
+    table = _set_table(rp, frame, worlds)
+    out: np.ndarray = np.clip(np.einsum("k,kwn->wn", rp.probabilities, table.astype(float)), 0.0, 1.0)
+    return out
+
+
+def worlds_for(mind: Mind, steps: Sequence[str], frame: Frame) -> Worlds:
+    """Every assignment of the ownership atoms any rule set of the steps names (and the folded atom)."""
+    named = _named([mind.rule_posterior(s) for s in steps])
+    return enumerate_worlds(frame, named, with_other=True)
+
+
+def decisions(mind: Mind, steps: Sequence[str], idx: Sequence[int]) -> np.ndarray:
+    """The Mind's decision (True: forbidden) for each object of ``idx``: some step forbidden by its
+    permission, else by the rules at the step's threshold (as :meth:`Mind.decide`, vectorised)."""
+    frame = mind.frame().take(list(idx))
+    out = np.zeros(len(idx), dtype=bool)
+    for s in steps:
+        if mind.settings.decide_rules == "posterior" and mind.perms[s]:
+            p = mind.rule_posterior(s).p_forbidden(frame)
+        else:
+            p = p_forbidden(mind.rules[s], frame)
+        bad = p >= mind.settings.threshold_for(s)
+        for k, i in enumerate(idx):
+            given = mind.permission(s, i)
+            if given is not None:
+                bad[k] = given.value >= PERMISSION_CUT
+        out |= bad
+    return out
+
+
+def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | str]) -> Expectation:
+    """The expected number of mistakes of deciding ``steps`` on ``objects`` on current beliefs.
+
+    Truth per object: each step is forbidden by its permission's value when the object has one
+    (the instructor said so), else by a rule set drawn from the step's posterior; ownership atoms are
+    drawn from the posterior. P(forbidden) = 1 - E_w[prod_s (1 - f_s(w))], f_s(w) the step's
+    probability of being forbidden in ownership world w (docs/asking.md, section 1).
+    """
+    idx = [mind.obj(o) for o in objects]
+    names = tuple(mind.objects[i].name for i in idx)
+    if not idx:
+        empty = np.zeros(0)
+        return Expectation(names, empty.astype(bool), empty, empty)
+    frame = mind.frame().take(idx)
+    worlds = worlds_for(mind, steps, frame)
+    allowed = np.ones_like(worlds.weights)  # (W, n): P(no step forbidden | w)
+    for s in steps:
+        f = step_forbidden(mind.rule_posterior(s), frame, worlds)
+        for k, i in enumerate(idx):
+            given = mind.permission(s, i)
+            if given is not None:
+                f[:, k] = given.value
+        allowed *= 1.0 - f
+    p_forb = np.clip(1.0 - (worlds.weights * allowed).sum(axis=0), 0.0, 1.0)
+    dec = decisions(mind, steps, idx)
+    wrong = np.where(dec, 1.0 - p_forb, p_forb)
+    return Expectation(names, dec, p_forb, wrong)
+
+
+# -- questions and their answers ------------------------------------------------------------------
+def owner_sets(mind: Mind, obj: int | str) -> list[tuple[tuple[str, ...], float]]:
+    """The possible owner sets of an object with their posterior probability (independent atoms).
+
+    Agents within SURE of 0 or 1 are taken as known; at most MAX_OWNER_AGENTS of the others (the
+    most uncertain) are enumerated, the rest taken at their likelier value; answers below
+    MIN_ANSWER are dropped and the rest renormalised (docs/asking.md, section 3).
+    """
+    i = mind.obj(obj)
+    p = mind.posterior()[i]
+    agents = mind.agents
+    unsure = [j for j in range(len(agents)) if SURE < p[j] < 1 - SURE]
+    unsure = sorted(sorted(unsure, key=lambda j: (abs(p[j] - 0.5), j))[:MAX_OWNER_AGENTS])
+    fixed = [j for j in range(len(agents)) if j not in unsure and p[j] >= 0.5]
+    out: list[tuple[tuple[str, ...], float]] = []
+    for bits in range(2 ** len(unsure)):
+        chosen = [unsure[k] for k in range(len(unsure)) if bits >> k & 1]
+        prob = float(np.prod([p[j] if j in chosen else 1 - p[j] for j in unsure]))
+        owners = tuple(agents[j] for j in sorted([*fixed, *chosen]))
+        out.append((owners, prob))
+    return _normalised(out)
+
+
+T = TypeVar("T")
+
+
+def _normalised(items: Sequence[tuple[T, float]]) -> list[tuple[T, float]]:
+    """The items at least MIN_ANSWER probable, their probabilities renormalised."""
+    kept = [(a, p) for a, p in items if p >= MIN_ANSWER]
+    z = sum(p for _, p in kept)
+    return [(a, p / z) for a, p in kept] if z > 0 else []
+
+
+def p_permission(mind: Mind, step: str, obj: int | str) -> float:
+    """P(an instructor forbids ``step`` on the object): the posterior predictive P(forbidden),
+    with the stated model's instructor noise."""
+    i = mind.obj(obj)
+    frame = mind.frame().take([i])
+    worlds = worlds_for(mind, [step], frame)
+    q = float((worlds.weights * step_forbidden(mind.rule_posterior(step), frame, worlds)).sum())
+    return LABEL_NOISE + (1 - 2 * LABEL_NOISE) * min(max(q, 0.0), 1.0)
+
+
+def rule_answer_probabilities(mind: Mind, rule: Rule) -> dict[str, float]:
+    """P(yes), P(no), P(partly) for "does RULE hold?" on the Mind's objects: yes when every object
+    the rule describes is forbidden, no when none is, partly otherwise (rule sets from the action's
+    posterior, ownership atoms independent per object)."""
+    frame = mind.frame()
+    rp = mind.rule_posterior(rule.action)
+    named, _ = relevant_atoms([[rule], *rp.sets, rp.allows])
+    worlds = enumerate_worlds(frame, named, with_other=True)
+    table = _set_table(rp, frame, worlds)  # (K, W, n)
+    covered = rule_truth([rule], frame, worlds)[None]  # (1, W, n)
+    w = worlds.weights[None]
+    some_allowed = (w * (covered & ~table)).sum(axis=1)  # (K, n): P(covered and allowed)
+    some_forbidden = (w * (covered & table)).sum(axis=1)
+    p_yes = float(rp.probabilities @ np.prod(np.clip(1 - some_allowed, 0, 1), axis=1))
+    p_no = float(rp.probabilities @ np.prod(np.clip(1 - some_forbidden, 0, 1), axis=1))
+    if not covered.any():  # it describes nothing here: "yes" and "no" are both true; count it "yes"
+        return {"yes": 1.0, "no": 0.0, "partly": 0.0}
+    return {"yes": p_yes, "no": p_no, "partly": max(0.0, 1.0 - p_yes - p_no)}
+
+
+def answers(mind: Mind, question: Question) -> list[tuple[Answer, float]]:
+    """The possible answers to ``question`` with their predicted probabilities (summing to 1)."""
+    if question.kind == "whose":
+        assert question.object is not None
+        return [(Answer(question, owners=o), p) for o, p in owner_sets(mind, question.object)]
+    if question.kind == "may":
+        assert question.object is not None and question.action is not None
+        p = p_permission(mind, question.action, question.object)
+        return _normalised([(Answer(question, forbid=True), p), (Answer(question, forbid=False), 1 - p)])
+    assert question.rule is not None
+    probs = rule_answer_probabilities(mind, question.rule)
+    return _normalised([(Answer(question, holds=h), probs[h]) for h in HOLDS])
+
+
+def apply_answer(mind: Mind, answer: Answer, speaker: str | None = None) -> None:
+    """Teach ``answer`` to ``mind`` by the ordinary instructions: an owner set is a claim per agent
+    (owners claimed, every other agent "not theirs"); a permission is :meth:`Mind.permit`; "yes" to a
+    rule is the forbid norm, "no" its allow norm, "partly" teaches nothing."""
+    q = answer.question
+    if q.kind == "whose":
+        assert q.object is not None and answer.owners is not None
+        for agent in mind.agents:
+            mind.claim(q.object, agent, 1.0, negated=agent not in answer.owners, speaker=speaker)
+    elif q.kind == "may":
+        assert q.object is not None and q.action is not None
+        mind.permit(q.action, q.object, 1.0 if answer.forbid else 0.0, speaker)
+    elif answer.holds in ("yes", "no"):
+        assert q.rule is not None
+        mind.instruct(Norm("forbid" if answer.holds == "yes" else "allow", q.rule), speaker)
+
+
+def value_of_information(mind: Mind, question: Question, steps: Sequence[str],
+                         objects: Sequence[int | str], before: float | None = None) -> Scored:
+    """EM(now) - sum over answers of P(answer) EM(after teaching the answer to a fork of ``mind``)."""
+    now = expected_mistakes(mind, steps, objects).total if before is None else before
+    rows = []
+    for answer, p in answers(mind, question):
+        fork = mind.fork()
+        apply_answer(fork, answer)
+        rows.append((answer, p, expected_mistakes(fork, steps, objects).total))
+    after = sum(p * em for _, p, em in rows)
+    return Scored(question, now - after, now, tuple(rows))
+
+
+def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
+               kinds: Sequence[str] = KINDS, top_objects: int = TOP_OBJECTS,
+               top_rules: int = TOP_RULES) -> list[Question]:
+    """The questions worth scoring (docs/asking.md, section 3): ``whose`` and ``may`` (each step
+    without a permission) on the ``top_objects`` objects whose decisions are most likely wrong
+    (ties: task order), and ``rule`` on the ``top_rules`` rules of each step's posterior whose
+    probability is nearest 1/2 (not yet stated, not certain)."""
+    exp = expected_mistakes(mind, steps, objects)
+    order = sorted(range(len(exp.objects)), key=lambda k: (-round(float(exp.p_wrong[k]), 12), k))
+    chosen = [exp.objects[k] for k in order[:top_objects] if exp.p_wrong[k] > 0]
+    out: list[Question] = []
+    for name in chosen:
+        if "may" in kinds:
+            out += [Question("may", name, s) for s in steps if mind.permission(s, name) is None]
+        if "whose" in kinds and len(owner_sets(mind, name)) > 1:
+            out.append(Question("whose", name))
+    if "rule" in kinds:
+        for s in steps:
+            given = set(mind.given(s))
+            probs = [(r, p) for r, p in mind.rule_posterior(s).rule_probabilities().items()
+                     if r not in given and 0.01 < p < 0.99]
+            probs.sort(key=lambda rp: (abs(rp[1] - 0.5), len(rp[0].literals), rp[0].text()))
+            out += [Question("rule", action=s, rule=r) for r, _ in probs[:top_rules]]
+    return out
+
+
+def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], top: int = 3,
+                   kinds: Sequence[str] = KINDS, questions: Sequence[Question] | None = None) -> list[Scored]:
+    """The ``top`` questions of largest value of information, best first; equal gains (to 1e-9) in
+    :meth:`Question.sort_key` order."""
+    pool = candidates(mind, steps, objects, kinds) if questions is None else list(questions)
+    before = expected_mistakes(mind, steps, objects).total
+    scored = [value_of_information(mind, q, steps, objects, before) for q in pool]
+    scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key()))
+    return scored[:top]
+
+
+__all__ = ["HOLDS", "KINDS", "OTHER", "Answer", "Expectation", "Question", "Scored", "answers",
+           "apply_answer", "best_questions", "candidates", "decisions", "expected_mistakes",
+           "owner_sets", "p_permission", "rule_answer_probabilities", "step_forbidden", "worlds_for",
+           "value_of_information"]

@@ -1,0 +1,91 @@
+"""Split-conformal prediction sets over {owns, does not own} for one object and agent.
+
+Pure core (docs/asking.md, section 7). Calibration scores come from the agent's claimed objects by
+leave-one-out: for each claimed object, the agent's predictor is refitted on the other claims and
+the score is ``1 - P(the claimed label)`` (a claim of at least 0.5 is "owns"). With ``n`` scores and
+coverage ``1 - a``, ``q`` is the ``ceil((n + 1)(1 - a))``-th smallest score (1 when that exceeds
+``n``: too few claims, both labels stay in the set), and the set of an object is every label ``y``
+with ``1 - P(y) <= q``, ``P`` the prediction from all claims. For exchangeable objects the set holds
+the true label with probability at least ``1 - a``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ownctl.errors import BadValue
+from ownctl.mind.core import Mind
+from ownctl.ownership.predict import KernelOwnershipModel
+
+OWNS, NOT = "owns", "does not own"
+
+
+@dataclass(frozen=True)
+class PredictionSet:
+    """One agent's conformal set for one object: the labels, the prediction, the threshold."""
+
+    agent: str
+    labels: tuple[str, ...]
+    p: float
+    q: float
+    calibration: int  # how many claimed objects gave scores
+
+    def as_dict(self) -> dict[str, object]:
+        """``{"agent", "set", "p", "q", "calibration"}``."""
+        return {"agent": self.agent, "set": list(self.labels), "p": self.p, "q": self.q,
+                "calibration": self.calibration}
+
+
+def check_coverage(coverage: float) -> float:
+    """``coverage`` if strictly between 0 and 1; BadValue otherwise."""
+    if not isinstance(coverage, int | float) or math.isnan(coverage) or not 0.0 < coverage < 1.0:
+        raise BadValue(f"--coverage must be a number strictly between 0 and 1, got {coverage!r}")
+    return float(coverage)
+
+
+def loo_scores(mind: Mind, agent: str) -> np.ndarray:
+    """Leave-one-out scores ``1 - P(claimed label)`` over the agent's claimed objects."""
+    X, known = mind.features(agent)
+    j = mind.agents.index(agent)
+    idx = np.flatnonzero(known)
+    claims = mind.claims[idx, j]
+    out = np.empty(len(idx))
+    for k in range(len(idx)):
+        rest = np.arange(len(idx)) != k
+        model = KernelOwnershipModel(mind.settings.predict).fit(X[idx[rest]], claims[rest])
+        p = float(model.predict_proba(X[idx[k] : idx[k] + 1])[0])
+        out[k] = 1.0 - p if claims[k] >= 0.5 else p
+    return out
+
+
+def threshold(scores: np.ndarray, coverage: float) -> float:
+    """The conformal quantile: the ceil((n + 1) coverage)-th smallest score, or 1 past n."""
+    n = len(scores)
+    rank = math.ceil((n + 1) * coverage)
+    return 1.0 if rank > n else float(np.sort(scores)[rank - 1])
+
+
+def label_set(p: float, q: float) -> tuple[str, ...]:
+    """Every label whose score ``1 - P(label)`` is at most ``q`` (owns first)."""
+    return tuple(label for label, score in ((OWNS, 1.0 - p), (NOT, p)) if score <= q + 1e-12)
+
+
+def prediction_sets(mind: Mind, obj: int | str, coverage: float = 0.9) -> list[PredictionSet]:
+    """Per agent, the conformal set of the object (its prior prediction; a claimed pair's set is
+    its claimed label)."""
+    coverage = check_coverage(coverage)
+    i = mind.obj(obj)
+    prior = mind.prior
+    out = []
+    for j, agent in enumerate(mind.agents):
+        scores = loo_scores(mind, agent) if mind.switches.prediction else np.zeros(0)
+        q = threshold(scores, coverage)
+        p = float(prior[i, j])
+        if not np.isnan(mind.claims[i, j]):
+            out.append(PredictionSet(agent, (OWNS if p >= 0.5 else NOT,), p, q, len(scores)))
+        else:
+            out.append(PredictionSet(agent, label_set(p, q), p, q, len(scores)))
+    return out

@@ -1,0 +1,142 @@
+"""``ownctl ask``, ``ask --put`` with ``say`` answering, ``run --ask``, and their bad inputs."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from tests.cli.conftest import Ownctl
+
+WORLD = """
+name = "four blocks"
+agents = ["alexis", "xuan"]
+norms = ["forbid trash if ownedBy any"]
+
+[[areas]]
+name = "home"
+box = [-0.1, -0.1, 0.1, 0.1]
+
+[[areas]]
+name = "trash"
+box = [-0.3, 0.6, 0.2, 1.1]
+
+[[objects]]
+name = "wallet"
+color = "red"
+position = [0.5, 0.3, 0.0]
+owners = { alexis = 1.0 }
+
+[[objects]]
+name = "cup"
+color = "blue"
+position = [0.4, -0.4, 0.0]
+
+[[objects]]
+name = "can"
+color = "green"
+position = [-0.5, 0.2, 0.0]
+
+[[objects]]
+name = "key"
+color = "red"
+position = [0.45, 0.35, 0.0]
+owners = { xuan = 1.0 }
+"""
+
+
+@pytest.fixture
+def world(tmp_path: Path, ownctl: Ownctl) -> Ownctl:
+    path = tmp_path / "world.toml"
+    path.write_text(WORLD, encoding="utf-8")
+    ownctl("world", "load", str(path))
+    ownctl("forbid", "trash", "on", "wallet")
+    ownctl("allow", "trash", "on", "cup")
+    return ownctl
+
+
+def test_ask_lists_questions_with_gains_and_writes_nothing(world: Ownctl) -> None:
+    before = world.digest()
+    data = world.json("ask", "--task", "trashAll", "--top", "2")
+    assert data["task"] == "trashAll" and data["steps"] == ["find", "pickUp", "trash"]
+    assert set(data["objects"]) == {"wallet", "cup", "can", "key"}
+    assert 0 < len(data["questions"]) <= 2
+    gains = [q["gain"] for q in data["questions"]]
+    assert gains == sorted(gains, reverse=True)
+    for q in data["questions"]:
+        assert q["kind"] in ("may", "whose", "rule") and q["text"].endswith("?")
+        assert sum(a["p"] for a in q["answers"]) == pytest.approx(1.0)
+    assert data["expected_mistakes"] >= 0
+    assert "expected mistakes" in world("ask", "--objects", "can,key").stdout
+    assert world.digest() == before
+
+
+ANSWERS = {"may": "yes, you may", "whose": "It's xuan's", "rule": "yes"}
+
+
+@pytest.mark.parametrize("objects", ["can", "key,can"])
+def test_a_put_question_is_answered_by_say_through_the_ordinary_instructions(world: Ownctl,
+                                                                              objects: str) -> None:
+    put = world.json("ask", "--put", "--as", "alexis", "--objects", objects)["put"]
+    said = world.json("say", ANSWERS[put["kind"]], "--as", "alexis")
+    assert said["intent"] == "answer"
+    if put["kind"] == "may":
+        assert said["instructions"] == [f"allow {put['action']} on {put['object']}"]
+        texts = [p["text"] for p in world.json("perms", "list")]
+        assert f"allow {put['action']} on {put['object']}" in texts
+    elif put["kind"] == "whose":
+        assert said["instructions"] == [f"claim {put['object']} xuan", f"claim {put['object']} alexis --not"]
+        owners = {o["agent"]: o for o in world.json("owners", put["object"])["owners"]}
+        assert owners["xuan"]["claim"] == 1.0 and owners["alexis"]["claim"] == 0.0
+    else:
+        assert said["instructions"] == [put["rule"]]
+    # answered: the same words are now ordinary speech again
+    assert world.json("say", "Whose is the key?", "--as", "alexis")["intent"] == "question"
+
+
+def test_an_utterance_that_is_no_answer_leaves_the_question_pending(world: Ownctl) -> None:
+    put = world.json("ask", "--put", "--as", "xuan", "--objects", "can")["put"]
+    assert world.json("say", "Hello", "--as", "xuan")["intent"] == "greeting"
+    assert world.json("say", ANSWERS[put["kind"]], "--as", "xuan")["intent"] == "answer"
+
+
+def test_run_asks_the_oracle_or_only_lists(ownctl: Ownctl, tmp_path: Path) -> None:
+    path = tmp_path / "world.toml"
+    path.write_text(WORLD, encoding="utf-8")
+    ownctl("world", "load", str(path))
+    ownctl("claim", "can", "alexis", "--not")
+    listed = ownctl.json("run", "trashAll", "--kinematic", "--ask", "1", "--instructor", "none")
+    assert len(listed["questions"]) <= 1 and all(q["answer"] is None for q in listed["questions"])
+    ownctl("config", "set", "ask.min_gain", "0")
+    assert ownctl.json("config", "get")["ask.min_gain"] == 0.0
+
+
+@pytest.mark.slow
+def test_run_with_the_oracle_answers_the_questions(ownctl: Ownctl) -> None:
+    report = ownctl.json("run", "trashAll", "--kinematic", "--seed", "2", "--ask", "2")
+    assert 1 <= len(report["questions"]) <= 2
+    assert all(q["answer"] for q in report["questions"])
+    assert report["mistakes"] <= 4
+
+
+def test_bad_inputs_are_one_line_and_write_nothing(world: Ownctl) -> None:
+    before = world.digest()
+    for args in (("ask", "--top", "0"), ("ask", "--task", "dance"), ("ask", "--objects", "nope"),
+                 ("ask", "--put", "--as", "nobody"), ("run", "trashAll", "--kinematic", "--ask", "-1"),
+                 ("config", "set", "ask.min_gain", "nan"), ("config", "set", "ask.min_gain", "lots"),
+                 ("owners", "can", "--coverage", "1.5"), ("experiment", "task", "--ask", "1,x")):
+        result = world(*args, code=1)
+        assert len(result.stderr.strip().splitlines()) == 1, (args, result.stderr)
+        assert result.stdout == ""
+    assert world.digest() == before
+    world("ask", "--as", "alexis", code=2)
+    assert world.digest() == before
+
+
+def test_owners_with_coverage_gives_a_set_per_agent(world: Ownctl) -> None:
+    for obj, agent in (("wallet", "alexis"), ("cup", "xuan"), ("key", "xuan")):
+        world("claim", obj, agent)
+    data = world.json("owners", "can", "--coverage", "0.9")
+    assert data["coverage"] == 0.9
+    for row in data["owners"]:
+        assert set(row["conformal"]["set"]) <= {"owns", "does not own"} and row["conformal"]["set"]

@@ -1,0 +1,49 @@
+"""Answers to a pending question (``ownctl.language.answers``): which words answer which question."""
+
+from __future__ import annotations
+
+import pytest
+
+from ownctl.language import Claim, Context, NormInstruction, Permission
+from ownctl.language.answers import answer_instructions
+from ownctl.logic.rules import parse_norm
+
+CTX = Context(speaker="jake", agents=frozenset({"jake", "casey", "ann"}),
+              objects=frozenset({"mug", "book"}))
+MAY = {"kind": "may", "object": "mug", "action": "trash"}
+RULE = {"kind": "rule", "rule": "forbid trash if isColored red"}
+WHOSE = {"kind": "whose", "object": "mug"}
+
+
+@pytest.mark.parametrize("words", ["yes", "Yes, you may.", "sure", "go ahead", "you can"])
+def test_yes_to_may_allows(words: str) -> None:
+    assert answer_instructions(words, MAY, CTX) == (Permission("trash", "mug", forbid=False),)
+
+
+@pytest.mark.parametrize("words", ["no", "No, you may not!", "don't", "you can't"])
+def test_no_to_may_forbids(words: str) -> None:
+    assert answer_instructions(words, MAY, CTX) == (Permission("trash", "mug", forbid=True),)
+
+
+def test_rule_answers() -> None:
+    rule = parse_norm(RULE["rule"]).rule
+    assert answer_instructions("yes", RULE, CTX) == (NormInstruction(parse_norm(RULE["rule"])),)
+    no = answer_instructions("no", RULE, CTX)
+    assert no is not None and isinstance(no[0], NormInstruction)
+    assert no[0].norm.sign == "allow" and no[0].norm.rule == rule
+    assert answer_instructions("not always", RULE, CTX) == ()
+
+
+def test_whose_answers_name_every_owner() -> None:
+    assert answer_instructions("It's Casey's", WHOSE, CTX) == (
+        Claim("mug", "casey"), Claim("mug", "ann", negated=True), Claim("mug", "jake", negated=True))
+    mine = answer_instructions("mine", WHOSE, CTX)
+    assert mine is not None and Claim("mug", "jake") in mine and Claim("mug", "casey", negated=True) in mine
+    nobody = answer_instructions("nobody's", WHOSE, CTX)
+    assert nobody is not None and all(c.negated for c in nobody)
+
+
+@pytest.mark.parametrize(("words", "question"), [("hello", MAY), ("maybe", RULE), ("yes", WHOSE),
+                                                 ("throw it away", MAY)])
+def test_other_words_are_no_answer(words: str, question: dict) -> None:
+    assert answer_instructions(words, question, CTX) is None

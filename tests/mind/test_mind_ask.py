@@ -1,0 +1,306 @@
+"""Expected mistakes and value of information (``ownctl.mind.ask``) against brute force.
+
+The brute force lists every rule set of each step's posterior and every owner set of every object
+(each agent one by one, nothing folded), evaluates the rules in plain Python on the objects'
+percepts, and combines steps, objects and answers by plain sums and products. The simulation runs
+the task loop on worlds whose true norms and owners are drawn from the posterior, with nobody
+teaching the robot.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from ownctl.experiment.kinematic import KinematicExecutor
+from ownctl.experiment.student import t_quantile
+from ownctl.experiment.task import SilentInstructor, run_task
+from ownctl.learn.model import LABEL_NOISE
+from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
+from ownctl.logic.vocab import object_steps
+from ownctl.mind import Mind
+from ownctl.mind.ask import (
+    Answer,
+    Question,
+    apply_answer,
+    best_questions,
+    candidates,
+    expected_mistakes,
+    owner_sets,
+    rule_answer_probabilities,
+    step_forbidden,
+    value_of_information,
+    worlds_for,
+)
+from ownctl.world.model import Area, ObjectSpec, World
+
+AGENTS = ("ann", "bob")
+AREAS = (Area("home", (-0.1, -0.1, 0.1, 0.1)), Area("trash", (0.5, 0.5, 0.9, 0.9)))
+STEPS = object_steps("trash")
+
+
+def small_mind(seed: int, n: int = 4, perms: int = 3, allow: bool = False) -> Mind:
+    """A few objects, two agents, random claims and permissions (and maybe an allow norm)."""
+    rng = np.random.default_rng(seed)
+    objects = []
+    for i in range(n):
+        x, y = rng.choice([0.0, 0.3]), rng.uniform(-0.05, 0.05)
+        ages = {a: float(rng.choice([5.0, 500.0])) for a in AGENTS}
+        objects.append(ObjectSpec(f"o{i}", str(rng.choice(["red", "blue"])), (float(x), float(y), 0.0),
+                                  frozenset({"block"}), ages))
+    mind = Mind(AGENTS, objects, list(AREAS))
+    mind.claim("o0", "ann", 1.0)
+    mind.claim("o0", "bob", 1.0, negated=True)
+    for k in range(perms):
+        step = STEPS[int(rng.integers(len(STEPS)))] if k else "trash"
+        mind.permit(step, f"o{int(rng.integers(n))}", float(rng.integers(2)))
+    if allow:
+        mind.instruct(parse_norm("allow trash if isColored blue"))
+    return mind
+
+
+def facts(mind: Mind, i: int) -> tuple[str | None, set[str], frozenset[str]]:
+    """Colour, areas and categories of object ``i`` (the crisp percepts)."""
+    frame = mind.frame().take([i])
+    areas = {a for a, member in frame.areas.items() if bool(member[0])}
+    return frame.colors[0], areas, frame.categories[0]
+
+
+def holds(rule: Rule, owners: frozenset[str], fact: tuple[str | None, set[str], frozenset[str]]) -> bool:
+    """Plain truth of a rule for one object with a known owner set."""
+    colour, areas, cats = fact
+    for lit in rule.literals:
+        if lit.pred == "ownedBy":
+            value = bool(owners) if lit.arg == ANY else lit.arg in owners
+        elif lit.pred == "isColored":
+            value = colour is not None if lit.arg == ANY else colour == lit.arg
+        elif lit.pred == "inArea":
+            value = bool(areas) if lit.arg == ANY else lit.arg in areas
+        else:
+            value = bool(cats) if lit.arg == ANY else lit.arg in cats
+        if value == lit.negated:
+            return False
+    return True
+
+
+def owner_worlds(p: np.ndarray) -> list[tuple[frozenset[str], float]]:
+    """Every owner set of one object with its probability (independent atoms, every agent)."""
+    out = []
+    for bits in itertools.product((0, 1), repeat=len(AGENTS)):
+        weight = math.prod(q if b else 1 - q for q, b in zip(p, bits, strict=True))
+        out.append((frozenset(a for a, b in zip(AGENTS, bits, strict=True) if b), weight))
+    return out
+
+
+def brute_forbidden(mind: Mind, step: str, i: int, owners: frozenset[str]) -> float:
+    """P(step forbidden on object i | its owner set), summing the step's rule sets one by one."""
+    rp = mind.rule_posterior(step)
+    fact = facts(mind, i)
+    total = 0.0
+    for rules, p in zip(rp.sets, rp.probabilities, strict=True):
+        if any(holds(r, owners, fact) for r in rules) and not any(holds(a, owners, fact) for a in rp.allows):
+            total += float(p)
+    return total
+
+
+def brute_em(mind: Mind, objects: list[int]) -> float:
+    """Expected mistakes by listing, per object, every owner set and every step's rule sets."""
+    post = mind.posterior()
+    total = 0.0
+    for i in objects:
+        p_forb = 0.0
+        for owners, w in owner_worlds(post[i]):
+            none = 1.0
+            for s in STEPS:
+                given = mind.permission(s, i)
+                f = given.value if given is not None else brute_forbidden(mind, s, i, owners)
+                none *= 1 - f
+            p_forb += w * (1 - none)
+        refused, _ = mind.decide("trash", i, STEPS)
+        total += 1 - p_forb if refused else p_forb
+    return total
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_expected_mistakes_equal_brute_force(seed: int) -> None:
+    mind = small_mind(seed, allow=seed == 3)
+    objects = list(range(len(mind.objects)))
+    exp = expected_mistakes(mind, STEPS, objects)
+    assert exp.total == pytest.approx(brute_em(mind, objects), abs=1e-9)
+    assert list(exp.decisions) == [mind.decide("trash", i, STEPS)[0] for i in objects]
+
+
+def test_a_step_marginal_equals_the_posterior_predictive() -> None:
+    mind = small_mind(5, allow=True)
+    frame = mind.frame()
+    for s in STEPS:
+        worlds = worlds_for(mind, [s], frame)
+        marginal = (worlds.weights * step_forbidden(mind.rule_posterior(s), frame, worlds)).sum(axis=0)
+        assert np.allclose(marginal, mind.rule_posterior(s).p_forbidden(frame), atol=1e-12)
+
+
+def brute_answers(mind: Mind, q: Question) -> list[tuple[Answer, float]]:
+    """The answers' probabilities by plain enumeration."""
+    post = mind.posterior()
+    if q.kind == "whose":
+        i = mind.obj(q.object)
+        return [(Answer(q, owners=tuple(sorted(o))), w) for o, w in owner_worlds(post[i])]
+    if q.kind == "may":
+        i = mind.obj(q.object)
+        f = sum(w * brute_forbidden(mind, q.action, i, o) for o, w in owner_worlds(post[i]))
+        p = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * f
+        return [(Answer(q, forbid=True), p), (Answer(q, forbid=False), 1 - p)]
+    probs = brute_rule_answers(mind, q.rule)
+    return [(Answer(q, holds=h), p) for h, p in probs.items()]
+
+
+def brute_rule_answers(mind: Mind, rule: Rule) -> dict[str, float]:
+    """P(yes/no/partly) over every rule set and every joint owner assignment of all objects."""
+    rp = mind.rule_posterior(rule.action)
+    post = mind.posterior()
+    n = len(mind.objects)
+    per = [owner_worlds(post[i]) for i in range(n)]
+    fact = [facts(mind, i) for i in range(n)]
+    out = {"yes": 0.0, "no": 0.0, "partly": 0.0}
+    for rules, p in zip(rp.sets, rp.probabilities, strict=True):
+        if p < 1e-15:
+            continue
+        for combo in itertools.product(*per):
+            w = p * math.prod(x[1] for x in combo)
+            covered = [holds(rule, combo[i][0], fact[i]) for i in range(n)]
+            forb = [any(holds(r, combo[i][0], fact[i]) for r in rules)
+                    and not any(holds(a, combo[i][0], fact[i]) for a in rp.allows) for i in range(n)]
+            hits = [f for c, f in zip(covered, forb, strict=True) if c]
+            out["yes" if all(hits) else "no" if not any(hits) else "partly"] += w
+    return out
+
+
+QUESTIONS = {"whose": Question("whose", "o1"), "may": Question("may", "o2", "pickUp"),
+             "rule": Question("rule", action="trash", rule=parse_norm("forbid trash if isColored red").rule)}
+
+
+@pytest.mark.parametrize(("seed", "kind"), [
+    (0, "may"), (0, "whose"),
+    *[pytest.param(s, k, marks=pytest.mark.slow) for s, k in
+      [(0, "rule"), (1, "may"), (1, "whose"), (1, "rule"), (2, "may"), (2, "whose"), (2, "rule")]],
+])
+def test_value_of_information_equals_brute_force(seed: int, kind: str) -> None:
+    mind = small_mind(seed, n=3)
+    objects = list(range(3))
+    before = brute_em(mind, objects)
+    for q in [QUESTIONS[kind]]:
+        scored = value_of_information(mind, q, STEPS, objects)
+        brute = brute_answers(mind, q)
+        if q.kind == "whose":
+            brute = [(a, p) for a, p in brute if p >= 1e-4]
+        z = sum(p for _, p in brute)
+        after = 0.0
+        for a, p in brute:
+            fork = mind.fork()
+            apply_answer(fork, a)
+            after += p / z * brute_em(fork, objects)
+        assert scored.before == pytest.approx(before, abs=1e-9)
+        assert scored.gain == pytest.approx(before - after, abs=1e-9), q.text()
+        assert sum(p for _, p, _ in scored.answers) == pytest.approx(1.0)
+
+
+@pytest.mark.slow
+def test_rule_answers_equal_brute_force() -> None:
+    mind = small_mind(2, n=3)
+    for text in ("forbid trash if isColored red", "forbid trash if ownedBy ann", "forbid pickUp"):
+        rule = parse_norm(text).rule
+        got = rule_answer_probabilities(mind, rule)
+        want = brute_rule_answers(mind, rule)
+        for h in want:
+            assert got[h] == pytest.approx(want[h], abs=1e-9), (text, h)
+
+
+def test_owner_sets_are_the_posterior_product() -> None:
+    mind = small_mind(1)
+    sets = dict(owner_sets(mind, "o2"))
+    for owners, w in owner_worlds(mind.posterior()[2]):
+        assert sets.get(tuple(sorted(owners)), 0.0) == pytest.approx(w, abs=1e-4)
+
+
+def test_answers_go_through_the_ordinary_instructions() -> None:
+    base = small_mind(0)
+    cases = [
+        (Answer(Question("whose", "o2"), owners=("bob",)),
+         lambda m: (m.claim("o2", "ann", 1.0, negated=True), m.claim("o2", "bob", 1.0, negated=False))),
+        (Answer(Question("may", "o3", "trash"), forbid=True), lambda m: m.permit("trash", "o3", 1.0)),
+        (Answer(Question("rule", action="trash", rule=parse_norm("forbid trash if ownedBy ann").rule),
+                holds="yes"), lambda m: m.instruct(parse_norm("forbid trash if ownedBy ann"))),
+        (Answer(Question("rule", action="trash", rule=parse_norm("forbid trash if isColored red").rule),
+                holds="no"),
+         lambda m: m.instruct(Norm("allow", parse_norm("forbid trash if isColored red").rule))),
+    ]
+    for answer, by_hand in cases:
+        a, b = base.fork(), base.fork()
+        apply_answer(a, answer)
+        by_hand(b)
+        assert np.array_equal(a.claims, b.claims, equal_nan=True)
+        assert a.perms == {k: {n: g for n, g in v.items()} for k, v in b.perms.items()}
+        assert a.rules == b.rules and a.allows == b.allows
+        assert np.allclose(a.posterior(), b.posterior())
+    partly = base.fork()
+    apply_answer(partly, Answer(cases[2][0].question, holds="partly"))
+    assert partly.rules == base.rules and partly.perms == base.perms
+
+
+def test_a_fork_is_independent_and_keeps_other_actions_posteriors() -> None:
+    mind = small_mind(4)
+    before = {s: mind.rule_posterior(s) for s in STEPS}
+    fork = mind.fork()
+    fork.permit("pickUp", "o1", 1.0)
+    fork.claim("o3", "bob", 1.0)
+    assert mind.permission("pickUp", "o1") is None or mind.permission("pickUp", "o1").value != 1.0 \
+        or before["pickUp"] is mind.rule_posterior("pickUp")
+    assert np.isnan(mind.claims[3, 1])
+    other = small_mind(4)
+    other.permit("pickUp", "o1", 1.0)
+    kept = other.rule_posterior("trash")  # carried over from before the permission
+    fresh = small_mind(4)
+    fresh.permit("pickUp", "o1", 1.0)
+    fresh._changed()
+    assert np.allclose(kept.probabilities, fresh.rule_posterior("trash").probabilities)
+
+
+def test_best_questions_are_ranked_and_ties_ordered() -> None:
+    mind = small_mind(0)
+    objects = list(range(len(mind.objects)))
+    ranked = best_questions(mind, STEPS, objects, top=50)
+    assert len(ranked) == len(candidates(mind, STEPS, objects))
+    keys = [(-round(s.gain, 9), s.question.sort_key()) for s in ranked]
+    assert keys == sorted(keys)
+
+
+def draw_world(mind: Mind, rng: np.random.Generator) -> World:
+    """True norms (a rule set per step from its posterior) and owners (from the posterior)."""
+    norms = []
+    for s in STEPS:
+        rp = mind.rule_posterior(s)
+        k = int(rng.choice(len(rp.sets), p=rp.probabilities / rp.probabilities.sum()))
+        norms += [r.text() for r in rp.sets[k]]
+    post = mind.posterior()
+    owners = {o.name: {a: 1.0 for j, a in enumerate(mind.agents) if rng.random() < post[i, j]}
+              for i, o in enumerate(mind.objects)}
+    return World("drawn", mind.agents, tuple(mind.objects), tuple(mind.areas), tuple(dict.fromkeys(norms)),
+                 owners)
+
+
+def test_expected_mistakes_match_simulated_tasks() -> None:
+    mind = small_mind(7, n=6, perms=4)
+    objects = [i for i in range(6) if not AREAS[1].contains(np.array(mind.objects[i].position[:2]))[0]]
+    em = expected_mistakes(mind, STEPS, objects).total
+    rng = np.random.default_rng(11)
+    counts = []
+    for _ in range(600):
+        world = draw_world(mind, rng)
+        report = run_task(mind.fork(), world, "trashAll", KinematicExecutor(world), SilentInstructor())
+        counts.append(report.mistakes)
+    x = np.array(counts, dtype=float)
+    half = t_quantile(0.975, len(x) - 1) * x.std(ddof=1) / math.sqrt(len(x))
+    assert abs(x.mean() - em) <= half, (x.mean(), em, half)
