@@ -1,7 +1,7 @@
 """The posterior over rule sets of one action, under the stated model of :mod:`ownctl.learn.model`.
 
 ``P(R | permissions) = P(R) P(permissions | R) / Z``: the prior favours fewer and shorter rules
-(each rule costs ``Model.cost(len(rule))`` nats), the likelihood marginalises each object's
+(each rule costs ``Model.cost_of(rule)`` nats), the likelihood marginalises each object's
 uncertain ownership exactly (independent atoms, as in :mod:`ownctl.logic.prob`) and allows for
 instructor noise (``Model.noise``). The default learner's rule set is this model's most probable
 one as found by search (:mod:`ownctl.learn.exact`); here the model is normalised over a space of
@@ -22,6 +22,7 @@ marginalised over rule sets (:meth:`RulePosterior.p_forbidden`).
 
 from __future__ import annotations
 
+import functools
 import itertools
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -75,7 +76,16 @@ class RulePosterior:
 
     def p_forbidden(self, frame: Frame) -> np.ndarray:
         """P(the action is forbidden) for every object of ``frame``, marginalised over rule sets
-        (each set minus the allow norms), with the frame's ownership probabilities."""
+        (each set minus the allow norms), with the frame's ownership probabilities.
+
+        Without allow norms, every rule's truth table over the frame's ownership worlds is built
+        once and the sets' disjunctions are taken together, a block of objects at a time
+        (:meth:`_p_forbidden_tables`); with them (or beyond the agents a table enumerates), set by
+        set with :func:`ownctl.logic.prob.p_forbidden`. Both are exact."""
+        if not self.allows and frame.n:
+            ev = Evidence(frame, np.zeros(frame.n))
+            if len(ev.worlds.atoms) >= sum(1 for m in frame.own.sum(axis=0) if m > 0):
+                return self._p_forbidden_tables(frame, len(ev.worlds.bits))
         out = np.zeros(frame.n)
         for rules, p in zip(self.sets, self.probabilities, strict=True):
             if p > 0:
@@ -83,6 +93,29 @@ class RulePosterior:
                 for allow in self.allows:
                     kept = subtract(kept, allow)
                 out += p * p_forbidden(kept, frame)
+        return np.clip(out, 0.0, 1.0)
+
+    def _p_forbidden_tables(self, frame: Frame, worlds: int, cells: int = 1 << 23) -> np.ndarray:
+        """:meth:`p_forbidden` from truth tables (``worlds``: at most that many ownership worlds per
+        object); ``cells`` bounds the (sets, worlds, objects) block held at once."""
+        rules = list(dict.fromkeys(r for s in self.sets for r in s))
+        index = {r: k for k, r in enumerate(rules)}
+        by_size: dict[int, list[int]] = {}
+        for k, s in enumerate(self.sets):
+            by_size.setdefault(len(s), []).append(k)
+        out = np.zeros(frame.n)
+        step = max(1, cells // max(1, len(self.sets) * worlds))
+        for lo in range(0, frame.n, step):
+            part = frame.take(np.arange(lo, min(frame.n, lo + step)))
+            ev = Evidence(part, np.zeros(part.n))
+            shape = ev.worlds.weights.shape
+            truth = np.stack([ev.truth(r) for r in rules]) if rules else np.zeros((0, *shape), dtype=bool)
+            for size, ks in by_size.items():
+                union = np.zeros((len(ks), *shape), dtype=bool)
+                for c in range(size):
+                    union |= truth[np.array([index[self.sets[k][c]] for k in ks], dtype=int)]
+                q = np.clip((union * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
+                out[lo:lo + part.n] += self.probabilities[ks] @ q
         return np.clip(out, 0.0, 1.0)
 
     def support(self, rule: Rule, frame: Frame) -> float:
@@ -114,27 +147,70 @@ class RuleSpace:
         for i, j in itertools.combinations(range(m), 2):
             a, b = self.pool[i], self.pool[j]
             clash[i, j] = clash[j, i] = rule_implies(a, b) or rule_implies(b, a)
+        free = ~clash & np.triu(np.ones((m, m), dtype=bool), 1)  # free[i, j]: i < j may stand together
         out: list[tuple[int, ...]] = [()]
-        level: list[tuple[int, ...]] = [()]
+        level = np.zeros((1, 0), dtype=int)
         for _ in range(self.max_rules):
-            level = [(*s, j) for s in level for j in range((s[-1] + 1) if s else 0, m)
-                     if not any(clash[i, j] for i in s)]
-            out += level
+            if not len(level) or not m:
+                break
+            # extend each set by every later index free with all of its members (lexicographic)
+            ok = np.ones((len(level), m), dtype=bool)
+            if level.shape[1]:
+                ok &= np.arange(m)[None, :] > level[:, -1:]
+                for c in range(level.shape[1]):
+                    ok &= free[level[:, c]]
+            rows, cols = np.nonzero(ok)
+            level = np.concatenate([level[rows], cols[:, None]], axis=1)
+            out += [tuple(int(x) for x in s) for s in level]
         return out
 
 
 def every_rule(action: str, atoms: Sequence[Literal], max_length: int) -> tuple[Rule, ...]:
     """Every satisfiable rule without implied literals over ``atoms``, up to ``max_length`` literals,
     shortest first, then in canonical order."""
-    atoms = tuple(atoms)
+    return _every_rule(action, tuple(atoms), max_length)
+
+
+@functools.lru_cache(maxsize=64)
+def _every_rule(action: str, atoms: tuple[Literal, ...], max_length: int) -> tuple[Rule, ...]:
     lits = literal_list(atoms)
+    return tuple(Rule(action, tuple(lits[x] for x in s)) for s in _rule_indices(atoms, max_length))
+
+
+@functools.lru_cache(maxsize=64)
+def _rule_indices(atoms: tuple[Literal, ...], max_length: int) -> tuple[tuple[int, ...], ...]:
+    """:func:`every_rule` as tuples of indices into ``literal_list(atoms)``."""
     ok = compatible(atoms)
     out: list[tuple[int, ...]] = [()]
     level: list[tuple[int, ...]] = [()]
     for _ in range(max_length):
         level = [(*s, int(x)) for s in level for x in extensions(ok, s, s[-1] // 2 + 1 if s else 0)]
         out += level
-    return tuple(Rule(action, tuple(lits[x] for x in s)) for s in out)
+    return tuple(out)
+
+
+@functools.lru_cache(maxsize=64)
+def _rule_costs(model: Model, atoms: tuple[Literal, ...], max_length: int) -> np.ndarray:
+    """``model.cost_of`` of every rule of :func:`every_rule` (literal ``2j + 1`` is a negation)."""
+    index = _rule_indices(atoms, max_length)
+    return np.array([model.cost(len(s)) + model.negation_cost * sum(x % 2 for x in s) for s in index])
+
+
+def every_rule_truth(ev: Evidence, atoms: Sequence[Literal], max_length: int) -> np.ndarray:
+    """(R, W, n) truth of every rule of :func:`every_rule` on the examples, one conjunction of
+    literal tables per literal position for all rules at once."""
+    atoms = tuple(atoms)
+    index = _rule_indices(atoms, max_length)
+    lits = literal_list(atoms)
+    stack = ev.literal_stack(lits)
+    padded = np.concatenate([stack, np.ones((1, *stack.shape[1:]), dtype=bool)])
+    columns = np.full((len(index), max(max_length, 1)), len(lits), dtype=int)
+    for k, s in enumerate(index):
+        columns[k, : len(s)] = s
+    out: np.ndarray = padded[columns[:, 0]]
+    for c in range(1, columns.shape[1]):
+        out &= padded[columns[:, c]]
+    return out
 
 
 def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: Sequence[tuple[int, ...]]
@@ -143,7 +219,7 @@ def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: Sequence[tu
     shape = ev.worlds.weights.shape
     truth = np.stack([ev.truth(r) for r in space.pool]) if space.pool else np.zeros((0, *shape), dtype=bool)
     base = ev.union(space.given)
-    costs = np.array([model.cost(len(r.literals)) for r in space.pool])
+    costs = np.array([model.cost_of(r) for r in space.pool])
     out = np.empty(len(sets))
     by_size: dict[int, list[int]] = {}
     for k, s in enumerate(sets):
@@ -177,8 +253,8 @@ def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: 
     alone or next to all but one of the rules ``around`` (so alternatives to each of them compete),
     with the rules ``around`` themselves; ties in canonical order."""
     pool = every_rule(action, atoms, max_length)
-    truth = np.stack([ev.truth(r) for r in pool])
-    costs = np.array([model.cost(len(r.literals)) for r in pool])
+    truth = every_rule_truth(ev, atoms, max_length)
+    costs = _rule_costs(model, tuple(atoms), max_length)
     chosen: dict[Rule, None] = {r: None for r in around}
     contexts = [()] + [tuple(x for x in around if x != r) for r in around]
     per = max(1, size // len(contexts))
