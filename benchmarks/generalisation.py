@@ -5,6 +5,7 @@ allowing everything, on the very same trials.
     python benchmarks/generalisation.py [--families 100] [--trials 20] [--jobs 2]
         [--probfoil-families 20] [--probfoil-trials 10] [--probfoil-noisy-families 10]
         [--probfoil-noisy-trials 5] [--probfoil-budget SECONDS] [--no-probfoil] [--json]
+        [--decide map|posterior]
 
 Trials are drawn by ownctl's own code (``ownctl.experiment.norms.norms_setup``): trial ``t`` of
 condition ``c`` of family ``s`` uses ``[seed, s, c, t]``, exactly as ``ownctl experiment norms
@@ -179,19 +180,20 @@ def key(seed: int, c: int, t: int) -> str:
 
 
 # -- ours, the paper's learner, allowing everything ------------------------------------------------
-def run_ours(unit: tuple[int, int, int]) -> tuple[tuple[int, int, int], dict[str, list[float]]]:
-    """Mean accuracy and F1 over actions of ours, the paper learner and allow-all on one trial."""
-    seed, c, t = unit
+def run_ours(unit: tuple[int, int, int, str]) -> tuple[tuple[int, int, int], dict[str, list[float]]]:
+    """Mean accuracy and F1 over actions of ours, the paper learner and allow-all on one trial
+    (``unit``: family seed, condition, trial, and how learned rules decide: map or posterior)."""
+    seed, c, t, decide = unit
     family = norm_family(seed)
     out = {}
     for learner in ("ours", "paper"):
-        scores = norms_trial(family, NORM_CONDITIONS[c], learner, _rng(seed, c, t))
+        scores = norms_trial(family, NORM_CONDITIONS[c], learner, _rng(seed, c, t), decide)
         out[learner] = [float(np.mean([s.accuracy for s in scores.values()])),
                         float(np.mean([s.f1 for s in scores.values()]))]
     setup = norms_setup(family, NORM_CONDITIONS[c], _rng(seed, c, t))
     base = [rule_scores(setup.answers[a], np.zeros(len(setup.world.objects))) for a in setup.rules]
     out["allow"] = [float(np.mean([s.accuracy for s in base])), float(np.mean([s.f1 for s in base]))]
-    return unit, out
+    return (seed, c, t), out
 
 
 def _family_means(values: dict[tuple[int, int, int], float], c: int) -> dict[int, float]:
@@ -217,6 +219,9 @@ def main() -> None:
     parser.add_argument("--trials", type=int, default=20)
     parser.add_argument("--family-seed", type=int, default=EVALUATION_SEEDS.start)
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--decide", choices=("map", "posterior"), default="map",
+                        help="ours and the paper learner decide on the most probable rule set, or "
+                        "marginalised over the rule-set posterior (slower)")
     parser.add_argument("--probfoil-families", type=int, default=20)
     parser.add_argument("--probfoil-trials", type=int, default=10)
     parser.add_argument("--probfoil-noisy-families", type=int, default=10)
@@ -234,7 +239,7 @@ def main() -> None:
 
     units = [(s, c, t) for s in seeds for c in range(len(CONDITIONS)) for t in range(args.trials)]
     with ProcessPoolExecutor(max_workers=args.jobs) as pool:
-        ours = dict(pool.map(run_ours, units, chunksize=20))
+        ours = dict(pool.map(run_ours, [(*u, args.decide) for u in units], chunksize=20))
 
     cache_path = Path(args.cache)
     cache: dict[str, Any] = json.loads(cache_path.read_text()) if cache_path.exists() else {}
@@ -266,7 +271,7 @@ def main() -> None:
             cache_path.parent.mkdir(parents=True, exist_ok=True)
             cache_path.write_text(json.dumps(cache, indent=1, sort_keys=True))
 
-    report: dict[str, Any] = {"families": len(seeds), "trials": args.trials,
+    report: dict[str, Any] = {"families": len(seeds), "trials": args.trials, "decide": args.decide,
                               "first_family": args.family_seed, "conditions": []}
     for c, cond in enumerate(CONDITIONS):
         row: dict[str, Any] = {"name": cond.name}
@@ -306,7 +311,8 @@ def _fmt(cell: dict[str, Any] | None) -> str:
 
 def _print(report: dict[str, Any]) -> None:
     print(f"{report['families']} norm families from seed {report['first_family']}, {report['trials']} trials "
-          "each (ours, paper, allow everything); ProbFOIL on the trials in its cache")
+          f"each (ours, paper, allow everything; rules decide by {report.get('decide', 'map')}); "
+          "ProbFOIL on the trials in its cache")
     for metric in ("accuracy", "f1"):
         print(f"\n{metric}: mean over families ± 95% CI [worst family]")
         print(f"{'condition':15s} {'ours':>20s} {'paper':>20s} {'allow all':>20s} | {'ProbFOIL':>12s} "

@@ -108,18 +108,20 @@ def run(
     progress: Callable[[int, int], None] | None = None,
     families: int | None = None,
     family_seed: int | None = None,
+    decide: str = "map",
 ) -> ExperimentResult:
     """Run ``experiment`` (norms, ownership, task) and write the optional CSV and plot files.
 
     ``families``: run the norms experiment on that many generated norm families of consecutive
     seeds from ``family_seed`` (default: the start of the reserved evaluation range) instead of one
-    world.
+    world. ``decide``: learned rules decide (and are scored) on the most probable rule set
+    (``map``) or marginalised over rule sets (``posterior``).
     """
     from ownctl.experiment.registry import get_experiment
     from ownctl.experiment.runner import check_settings, run_experiment
 
     exp = get_experiment(experiment)
-    check_settings(trials, jobs, learner)
+    check_settings(trials, jobs, learner, decide)
     conditions = task_conditions(task) if exp.name == "task" else None
     if exp.name != "task" and task != "both":
         raise BadValue(f"--task only applies to the task experiment, not {exp.name!r}")
@@ -129,7 +131,7 @@ def run(
             raise OwnctlError(f"cannot write the {what} file {str(path)!r}: its folder does not exist")
     factory, name, comparable = _world_factory(world)
     result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name,
-                            comparable, chosen_families)
+                            comparable, chosen_families, decide)
     if csv_path is not None:
         write_csv(result, csv_path)
     if plot_path is not None:

@@ -28,6 +28,7 @@ Progress = Callable[[int, int], None]  # (trials done, trials in total)
 CHUNKS_PER_JOB = 6
 
 LEARNERS = ("ours", "paper")
+DECISIONS = ("map", "posterior")  # decide.rules: the most probable rule set, or marginalised
 
 
 @dataclass(frozen=True)
@@ -43,6 +44,7 @@ class ExperimentResult:
     seconds: float
     world: str = "paper blocks world"
     extra: dict[str, Any] = field(default_factory=dict)
+    decide: str = "map"
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON document (docs/architecture.md, section 7 shape, plus groups, counts and settings)."""
@@ -54,6 +56,7 @@ class ExperimentResult:
             "seed": self.seed,
             "jobs": self.jobs,
             "learner": self.learner,
+            "decide": self.decide,
             "world": self.world,
             "headline": exp.headline,
             "conditions": [_condition_dict(c) for c in self.conditions],
@@ -96,18 +99,18 @@ def select_conditions(exp: Experiment, names: Sequence[str] | None) -> list[int]
 
 
 def run_trial(exp: Experiment, world_factory: WorldFactory, learner: str, seed: int, c: int,
-              t: int, family: int | None = None) -> TrialResult:
+              t: int, family: int | None = None, decide: str = "map") -> TrialResult:
     """Trial ``t`` of condition ``c`` (of norm family ``family``, if given): the one place a trial's
     random generator is made."""
     rng = np.random.default_rng([seed, c, t] if family is None else [seed, family, c, t])
-    return exp.trial(world_factory, exp.conditions[c], learner, rng)
+    return exp.trial(world_factory, exp.conditions[c], learner, rng, decide)
 
 
 Unit = tuple[int, int, int]  # (world factory index, condition index, trial)
 
 
 def _run_chunk(name: str, factories: Sequence[WorldFactory], learner: str, seed: int,
-               units: Sequence[Unit]) -> list[tuple[Unit, TrialResult, float]]:
+               units: Sequence[Unit], decide: str = "map") -> list[tuple[Unit, TrialResult, float]]:
     exp = get_experiment(name)
     out = []
     for unit in units:
@@ -115,7 +118,7 @@ def _run_chunk(name: str, factories: Sequence[WorldFactory], learner: str, seed:
         factory = factories[f]
         family = factory.seed if isinstance(factory, NormFamily) else None
         start = time.perf_counter()
-        result = run_trial(exp, factories[f], learner, seed, c, t, family)
+        result = run_trial(exp, factories[f], learner, seed, c, t, family, decide)
         out.append((unit, result, time.perf_counter() - start))
     return out
 
@@ -125,14 +128,17 @@ def _chunks(pairs: list[Unit], jobs: int) -> list[list[Unit]]:
     return [pairs[i : i + size] for i in range(0, len(pairs), size)]
 
 
-def check_settings(trials: int, jobs: int, learner: str) -> None:
-    """BadValue / UnknownName for a trial count or job count below 1, or an unknown learner."""
+def check_settings(trials: int, jobs: int, learner: str, decide: str = "map") -> None:
+    """BadValue / UnknownName for a trial count or job count below 1, an unknown learner or an
+    unknown decision mode."""
     if trials < 1:
         raise BadValue(f"trials must be at least 1, got {trials}")
     if jobs < 1:
         raise BadValue(f"jobs must be at least 1, got {jobs}")
     if learner not in LEARNERS:
         raise UnknownName("learner", learner, LEARNERS)
+    if decide not in DECISIONS:
+        raise UnknownName("decision mode", decide, DECISIONS)
 
 
 def run_experiment(
@@ -147,6 +153,7 @@ def run_experiment(
     world: str = "paper blocks world",
     compare: bool = True,
     families: Sequence[NormFamily] = (),
+    decide: str = "map",
 ) -> ExperimentResult:
     """Run ``trials`` trials of every (selected) condition of experiment ``name``.
 
@@ -157,9 +164,10 @@ def run_experiment(
     instead of ``world_factory`` (trial ``t`` of condition ``c`` of family ``s`` draws from
     ``[seed, s, c, t]``), and each condition reports the mean over families, with its 95% interval
     over families, and the worst family (:func:`~ownctl.experiment.summary.summarise_families`).
+    ``decide``: how learned rules decide and are scored (``map`` or ``posterior``).
     """
     exp = get_experiment(name)
-    check_settings(trials, jobs, learner)
+    check_settings(trials, jobs, learner, decide)
     chosen = select_conditions(exp, conditions)
     factories: list[WorldFactory] = list(families) or [world_factory]
     units = [(f, c, t) for f in range(len(factories)) for t in range(trials) for c in chosen]
@@ -169,13 +177,13 @@ def run_experiment(
     if progress:
         progress(0, total)
     if jobs == 1:
-        for unit, result, secs in _iterate_serial(exp.name, factories, learner, seed, units):
+        for unit, result, secs in _iterate_serial(exp.name, factories, learner, seed, units, decide):
             done[unit] = (result, secs)
             if progress:
                 progress(len(done), total)
     else:
         with ProcessPoolExecutor(max_workers=jobs) as pool:
-            futures = [pool.submit(_run_chunk, exp.name, factories, learner, seed, chunk)
+            futures = [pool.submit(_run_chunk, exp.name, factories, learner, seed, chunk, decide)
                        for chunk in _chunks(units, jobs)]
             for fut in as_completed(futures):
                 for unit, result, secs in fut.result():
@@ -195,7 +203,7 @@ def run_experiment(
         extra["families"] = [_family_dict(fam, per_factory[f]) for f, fam in enumerate(families)]
         world = f"{len(families)} norm families (seeds {families[0].seed}-{families[-1].seed})"
     return ExperimentResult(exp, trials, seed, jobs, learner, tuple(summaries),
-                            time.perf_counter() - start, world, extra)
+                            time.perf_counter() - start, world, extra, decide)
 
 
 def _condition(exp: Experiment, c: int, results: Sequence[tuple[TrialResult, float]],
@@ -222,6 +230,6 @@ def _family_dict(family: NormFamily, conditions: Sequence[ConditionSummary]) -> 
 
 
 def _iterate_serial(name: str, factories: Sequence[WorldFactory], learner: str, seed: int,
-                    units: Sequence[Unit]) -> Iterator[tuple[Unit, TrialResult, float]]:
+                    units: Sequence[Unit], decide: str = "map") -> Iterator[tuple[Unit, TrialResult, float]]:
     for unit in units:
-        yield from _run_chunk(name, factories, learner, seed, [unit])
+        yield from _run_chunk(name, factories, learner, seed, [unit], decide)
