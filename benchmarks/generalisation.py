@@ -5,6 +5,7 @@ allowing everything, on the very same trials.
     python benchmarks/generalisation.py [--families 100] [--trials 20] [--jobs 2 | --scheduler ADDRESS]
         [--probfoil-families 20] [--probfoil-trials 10] [--probfoil-noisy-families 10]
         [--probfoil-noisy-trials 5] [--probfoil-budget SECONDS] [--no-probfoil] [--json]
+        [--decide map|posterior] [--paper]
 
 Trials are drawn by ownctl's own code (``ownctl.experiment.norms.norms_setup``): trial ``t`` of
 condition ``c`` of family ``s`` uses ``[seed, s, c, t]``, exactly as ``ownctl experiment norms
@@ -54,6 +55,7 @@ from ownctl.experiment.cluster import executor  # noqa: E402
 from ownctl.experiment.metrics import ci95, rule_scores  # noqa: E402
 from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, norms_trial  # noqa: E402
 from ownctl.world.families import EVALUATION_SEEDS, norm_family  # noqa: E402
+from ownctl.world.generator import paper_blocks_world  # noqa: E402
 from ownctl.world.model import positions  # noqa: E402
 
 CACHE = ROOT / "benchmarks" / "data" / "probfoil.json"
@@ -61,8 +63,18 @@ CONDITIONS = [c for c in NORM_CONDITIONS if not c.baseline]
 SEED = 0
 
 
+PAPER = -1  # the "family seed" of the paper's own blocks world and norms (--paper)
+
+
 def _rng(family: int, c: int, t: int) -> np.random.Generator:
-    return np.random.default_rng([SEED, family, c, t])
+    """Trial ``t`` of condition ``c``: as ``ownctl experiment norms --families`` draws it, or, for the
+    paper's world, exactly as Table 1 (``ownctl experiment norms``, seed 0) does."""
+    return np.random.default_rng([SEED, c, t] if family == PAPER else [SEED, family, c, t])
+
+
+def world_of(family: int) -> Any:
+    """The world factory of a family seed (:data:`PAPER`: the paper's blocks world)."""
+    return paper_blocks_world if family == PAPER else norm_family(family)
 
 
 # -- ProbFOIL on one trial -----------------------------------------------------------------------
@@ -163,7 +175,7 @@ def run_probfoil(unit: tuple[int, int, int]) -> tuple[str, dict[str, Any]]:
 
     os.nice(19) if os.nice(0) < 19 else None
     seed, c, t = unit
-    family = norm_family(seed)
+    family = world_of(seed)
     setup = norms_setup(family, NORM_CONDITIONS[c], _rng(seed, c, t))
     start = time.perf_counter()
     actions: dict[str, Any] = {}
@@ -179,30 +191,33 @@ def run_probfoil(unit: tuple[int, int, int]) -> tuple[str, dict[str, Any]]:
 
 def key(seed: int, c: int, t: int) -> str:
     """The cache key of one trial."""
-    return f"{seed}/{NORM_CONDITIONS[c].name}/{t}"
+    return f"{'paper' if seed == PAPER else seed}/{NORM_CONDITIONS[c].name}/{t}"
 
 
 # -- ours, the paper's learner, allowing everything ------------------------------------------------
-def run_ours(unit: tuple[int, int, int]) -> tuple[tuple[int, int, int], dict[str, list[float]]]:
-    """Mean accuracy and F1 over actions of ours, the paper learner and allow-all on one trial."""
-    seed, c, t = unit
-    family = norm_family(seed)
+def run_ours(unit: tuple[int, int, int, str]) -> tuple[tuple[int, int, int], dict[str, list[float]]]:
+    """Mean accuracy and F1 over actions of ours, the paper learner and allow-all on one trial
+    (``unit``: family seed, condition, trial, and how learned rules decide: map or posterior)."""
+    seed, c, t, decide = unit
+    family = world_of(seed)
     out = {}
     for learner in ("ours", "paper"):
-        scores = norms_trial(family, NORM_CONDITIONS[c], learner, _rng(seed, c, t))
+        scores = norms_trial(family, NORM_CONDITIONS[c], learner, _rng(seed, c, t), decide)
         out[learner] = [float(np.mean([s.accuracy for s in scores.values()])),
                         float(np.mean([s.f1 for s in scores.values()]))]
     setup = norms_setup(family, NORM_CONDITIONS[c], _rng(seed, c, t))
     base = [rule_scores(setup.answers[a], np.zeros(len(setup.world.objects))) for a in setup.rules]
     out["allow"] = [float(np.mean([s.accuracy for s in base])), float(np.mean([s.f1 for s in base]))]
-    return unit, out
+    return (seed, c, t), out
 
 
 def _family_means(values: dict[tuple[int, int, int], float], c: int) -> dict[int, float]:
+    """Each family's mean over its trials of condition ``c`` (the paper's world: each trial alone, so
+    that intervals and paired differences are over trials)."""
     per: dict[int, list[float]] = {}
-    for (seed, cc, _), v in values.items():
+    for (seed, cc, t), v in values.items():
         if cc == c:
-            per.setdefault(seed, []).append(v)
+            per.setdefault(t if seed == PAPER else seed, []).append(v)
     return {s: float(np.mean(v)) for s, v in per.items()}
 
 
@@ -221,6 +236,9 @@ def main() -> None:
     parser.add_argument("--trials", type=int, default=20)
     parser.add_argument("--family-seed", type=int, default=EVALUATION_SEEDS.start)
     parser.add_argument("--jobs", type=int, default=2)
+    parser.add_argument("--decide", choices=("map", "posterior"), default="map",
+                        help="ours and the paper learner decide on the most probable rule set, or "
+                        "marginalised over the rule-set posterior (slower)")
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="run ours, the paper's learner and allow-all on this Dask cluster (tcp://host:8786)")
     parser.add_argument("--probfoil-families", type=int, default=20)
@@ -229,6 +247,9 @@ def main() -> None:
     parser.add_argument("--probfoil-noisy-trials", type=int, default=5)
     parser.add_argument("--probfoil-budget", type=float, default=None, metavar="SECONDS")
     parser.add_argument("--no-probfoil", action="store_true")
+    parser.add_argument("--paper", action="store_true",
+                        help="the paper's blocks world and norms, trials drawn exactly as Table 1's, "
+                        "instead of norm families (--families and --probfoil-*families ignored)")
     parser.add_argument("--cache", default=str(CACHE))
     parser.add_argument("--json", action="store_true")
     parser.add_argument("--table", metavar="FILE.json", help="print the table of an earlier --json run")
@@ -236,12 +257,15 @@ def main() -> None:
     if args.table:
         _print(json.loads(Path(args.table).read_text()))
         return
+    if args.paper:
+        args.family_seed, args.families = PAPER, 1
+        args.probfoil_families = args.probfoil_noisy_families = 1
     seeds = [args.family_seed + k for k in range(args.families)]
 
     units = [(s, c, t) for s in seeds for c in range(len(CONDITIONS)) for t in range(args.trials)]
     try:
         with executor(args.jobs, args.scheduler) as (pool, _):
-            ours = dict(pool.map(run_ours, units, chunksize=20))
+            ours = dict(pool.map(run_ours, [(*u, args.decide) for u in units], chunksize=20))
     except OwnctlError as exc:
         sys.exit(f"generalisation: {exc.message}")
 
@@ -275,7 +299,7 @@ def main() -> None:
             cache_path.parent.mkdir(parents=True, exist_ok=True)
             cache_path.write_text(json.dumps(cache, indent=1, sort_keys=True))
 
-    report: dict[str, Any] = {"families": len(seeds), "trials": args.trials,
+    report: dict[str, Any] = {"families": len(seeds), "trials": args.trials, "decide": args.decide,
                               "first_family": args.family_seed, "conditions": []}
     for c, cond in enumerate(CONDITIONS):
         row: dict[str, Any] = {"name": cond.name}
@@ -314,8 +338,11 @@ def _fmt(cell: dict[str, Any] | None) -> str:
 
 
 def _print(report: dict[str, Any]) -> None:
-    print(f"{report['families']} norm families from seed {report['first_family']}, {report['trials']} trials "
-          "each (ours, paper, allow everything); ProbFOIL on the trials in its cache")
+    where = ("the paper's blocks world (Table 1's trials)" if report["first_family"] == PAPER
+             else f"{report['families']} norm families from seed {report['first_family']}")
+    print(f"{where}, {report['trials']} trials "
+          f"each (ours, paper, allow everything; rules decide by {report.get('decide', 'map')}); "
+          "ProbFOIL on the trials in its cache")
     for metric in ("accuracy", "f1"):
         print(f"\n{metric}: mean over families ± 95% CI [worst family]")
         print(f"{'condition':15s} {'ours':>20s} {'paper':>20s} {'allow all':>20s} | {'ProbFOIL':>12s} "

@@ -115,19 +115,21 @@ def run(
     family_seed: int | None = None,
     *,
     scheduler: str | None = None,
+    decide: str = "map",
 ) -> ExperimentResult:
     """Run ``experiment`` (norms, ownership, task) and write the optional CSV and plot files.
 
     ``families``: run the norms experiment on that many generated norm families of consecutive
     seeds from ``family_seed`` (default: the start of the reserved evaluation range) instead of one
     world. ``scheduler``: run the trials on the Dask cluster at that address instead of ``jobs``
-    local processes (the same results).
+    local processes (the same results). ``decide``: learned rules decide (and are scored) on the
+    most probable rule set (``map``) or marginalised over rule sets (``posterior``).
     """
     from ownctl.experiment.registry import get_experiment
     from ownctl.experiment.runner import check_settings, run_experiment
 
     exp = get_experiment(experiment)
-    check_settings(trials, jobs, learner, scheduler)
+    check_settings(trials, jobs, learner, scheduler, decide)
     conditions = task_conditions(task) if exp.name == "task" else None
     if exp.name != "task" and task != "both":
         raise BadValue(f"--task only applies to the task experiment, not {exp.name!r}")
@@ -137,7 +139,7 @@ def run(
             raise OwnctlError(f"cannot write the {what} file {str(path)!r}: its folder does not exist")
     factory, name, comparable = _world_factory(world)
     result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name,
-                            comparable, chosen_families, scheduler)
+                            comparable, chosen_families, scheduler, decide)
     if exp.name == "ownership":
         from ownctl.experiment.calibration import calibration
 

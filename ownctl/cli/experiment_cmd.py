@@ -44,19 +44,23 @@ WorldOpt = Annotated[
 LearnerOpt = Annotated[
     str, typer.Option("--learner", metavar="ours|paper", help="Rule learner: ours or paper.")
 ]
+DecideOpt = Annotated[
+    str, typer.Option("--decide", metavar="map|posterior", help="Learned rules decide, and are scored, on "
+                      "the most probable rule set (map) or marginalised over rule sets (posterior; slower).")
+]
 CsvOpt = Annotated[str | None, typer.Option("--csv", metavar="FILE", help="Also write every figure as CSV.")]
 PlotOpt = Annotated[str | None, typer.Option("--plot", metavar="FILE.png", help="Also plot the metrics.")]
 
 
 def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
          json_out: bool, csv: str | None, plot: str | None, quiet: bool, families: int | None = None,
-         family_seed: int | None = None, scheduler: str | None = None) -> None:
+         family_seed: int | None = None, scheduler: str | None = None, decide: str = "map") -> None:
     from ownctl.app import experiment as app
 
     bar = None if quiet else _progress_bar(experiment)
     try:  # errors are reported by the command group, like every command's
         result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, bar, families,
-                         family_seed, scheduler=scheduler)
+                         family_seed, scheduler=scheduler, decide=decide)
     finally:
         if bar is not None:
             bar.stop()
@@ -114,13 +118,14 @@ def norms(
     family_seed: Annotated[int | None, typer.Option(
         "--family-seed", metavar="SEED", help="First family seed (default 1000, the evaluation range "
         "1000-1099).")] = None,
+    decide: DecideOpt = "map",
 ) -> None:
     """Table 1: learn norms from permissions on some of the objects.
 
     Permissions are given on 100, 50 or 25% of the objects, with exact or noisy ownership.
     """
     _run("norms", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet, families,
-         family_seed, scheduler)
+         family_seed, scheduler, decide)
 
 
 @experiment_app.command("ownership")
@@ -149,6 +154,7 @@ def task(
         "--ask", metavar="B,B,...", help="Instead: let the robot ask up to B questions per task (e.g. "
         "0,1,2,4,8), by value of information, by ownership entropy and at random, on the same seeds."
     )] = None,
+    decide: DecideOpt = "map",
 ) -> None:
     """Table 3: collectAll and trashAll with a correcting instructor.
 
@@ -159,7 +165,8 @@ def task(
 
         run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet)
         return
-    _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, scheduler=scheduler)
+    _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, scheduler=scheduler,
+         decide=decide)
 
 
 # -- rendering ------------------------------------------------------------------------------------
@@ -228,7 +235,8 @@ def render(result: ExperimentResult) -> None:
     also = " and the paper" if comparable else " (the paper's values are for its blocks world only)"
     if "families" in result.extra:
         also = " over norm families"
-    head = Table(title=f"{exp.title}: ours ({result.learner} learner, mean±95% CI){also}",
+    mode = "" if result.decide == "map" else ", decisions marginalised over rule sets"
+    head = Table(title=f"{exp.title}: ours ({result.learner} learner{mode}, mean±95% CI){also}",
                  caption=f"accuracy, F1 = {exp.headline}: {exp.groups.get(exp.headline, '')}",
                  box=box.SIMPLE_HEAD, collapse_padding=True, pad_edge=False)
     for col in columns:

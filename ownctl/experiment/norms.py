@@ -91,11 +91,12 @@ def norms_setup(make_world: WorldFactory, cond: NormCondition, rng: np.random.Ge
 
 
 def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
-                rng: np.random.Generator) -> dict[str, Scores]:
-    """One trial of one condition; per-action scores of the learned rules."""
+                rng: np.random.Generator, decide: str = "map") -> dict[str, Scores]:
+    """One trial of one condition; per-action scores of the learned rules (``decide``: scored on the
+    most probable rule set, ``map``, or marginalised over rule sets, ``posterior``)."""
     setup = norms_setup(make_world, cond, rng)
     world = setup.world
-    settings = Settings(learn=LearnConfig(learner=learner))
+    settings = Settings(learn=LearnConfig(learner=learner), decide_rules=decide)
     mind = Mind(world.agents, list(world.objects), world.areas, settings,
                 Switches(inference=False, prediction=False))
     mind.claims[:] = setup.claims
@@ -104,10 +105,10 @@ def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
             for action in setup.rules:
                 mind.permit(action, int(obj), float(setup.answers[action][obj]))
     frame = setup.true_frame
-    return {a: rule_scores(setup.answers[a], p_forbidden(mind.rules[a], frame)) for a in setup.rules}
+    return {a: rule_scores(setup.answers[a], mind.p_rules_on(a, frame)) for a in setup.rules}
 
 
 def norms_result(make_world: WorldFactory, cond: NormCondition, learner: str,
-                 rng: np.random.Generator) -> TrialResult:
+                 rng: np.random.Generator, decide: str = "map") -> TrialResult:
     """:func:`norms_trial` as a trial result: group ``rules``, one row per action with a true norm."""
-    return TrialResult({"rules": norms_trial(make_world, cond, learner, rng)})
+    return TrialResult({"rules": norms_trial(make_world, cond, learner, rng, decide)})

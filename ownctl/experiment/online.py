@@ -35,10 +35,11 @@ TASK_CONDITIONS = (TaskCondition("collectAll", "collectAll"), TaskCondition("tra
 
 
 def task_trial(make_world: WorldFactory, cond: TaskCondition, learner: str,
-               rng: np.random.Generator) -> TrialResult:
-    """One task run on a fresh world; groups ``rules``, ``rules_all`` (per action), ``ownership``."""
+               rng: np.random.Generator, decide: str = "map") -> TrialResult:
+    """One task run on a fresh world; groups ``rules``, ``rules_all`` (per action), ``ownership``.
+    ``decide``: how rules decide a step (``decide.rules``, docs/architecture.md section 3)."""
     world = make_world(rng)
-    settings = Settings(learn=LearnConfig(learner=learner))
+    settings = Settings(learn=LearnConfig(learner=learner), decide_rules=decide)
     mind = Mind(world.agents, list(world.objects), world.areas, settings, Switches())
     report = run_task(mind, world, cond.task, KinematicExecutor(world), OracleInstructor(world))
     return report_result(report)

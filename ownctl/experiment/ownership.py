@@ -43,8 +43,9 @@ OWNERSHIP_CONDITIONS = (
 
 
 def ownership_trial(make_world: WorldFactory, cond: OwnershipCondition, learner: str,
-                    rng: np.random.Generator) -> TrialResult:
-    """One trial; groups ``test`` (held-out half) and ``all`` (every object), rows = agents."""
+                    rng: np.random.Generator, decide: str = "map") -> TrialResult:
+    """One trial; groups ``test`` (held-out half) and ``all`` (every object), rows = agents.
+    ``decide`` is accepted for a uniform trial signature: no decision is taken here."""
     mind, world, test = protocol(make_world, cond, learner, rng)
     truth = world.true_ownership()
     post = mind.posterior()

@@ -20,7 +20,7 @@ from ownctl.experiment.online import TASK_CONDITIONS, task_trial
 from ownctl.experiment.ownership import OWNERSHIP_CONDITIONS, ownership_trial
 from ownctl.experiment.result import TrialResult
 
-TrialFn = Callable[[WorldFactory, Any, str, np.random.Generator], TrialResult]
+TrialFn = Callable[[WorldFactory, Any, str, np.random.Generator, str], TrialResult]  # ..., decide
 Paper = Mapping[str, Mapping[str, Any]]
 
 RULE_METRICS = (

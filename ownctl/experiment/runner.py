@@ -30,6 +30,7 @@ Progress = Callable[[int, int], None]  # (trials done, trials in total)
 CHUNKS_PER_JOB = 6
 
 LEARNERS = ("ours", "paper")
+DECISIONS = ("map", "posterior")  # decide.rules: the most probable rule set, or marginalised
 
 
 @dataclass(frozen=True)
@@ -46,6 +47,7 @@ class ExperimentResult:
     world: str = "paper blocks world"
     extra: dict[str, Any] = field(default_factory=dict)
     scheduler: str | None = None  # the Dask scheduler the trials ran on (None: this machine)
+    decide: str = "map"  # how learned rules decided and were scored (decide.rules)
 
     def as_dict(self) -> dict[str, Any]:
         """The JSON document (docs/architecture.md, section 7 shape, plus groups, counts and settings)."""
@@ -58,6 +60,7 @@ class ExperimentResult:
             "jobs": self.jobs,
             "scheduler": self.scheduler,
             "learner": self.learner,
+            "decide": self.decide,
             "world": self.world,
             "headline": exp.headline,
             "conditions": [_condition_dict(c) for c in self.conditions],
@@ -100,18 +103,18 @@ def select_conditions(exp: Experiment, names: Sequence[str] | None) -> list[int]
 
 
 def run_trial(exp: Experiment, world_factory: WorldFactory, learner: str, seed: int, c: int,
-              t: int, family: int | None = None) -> TrialResult:
+              t: int, family: int | None = None, decide: str = "map") -> TrialResult:
     """Trial ``t`` of condition ``c`` (of norm family ``family``, if given): the one place a trial's
     random generator is made."""
     rng = np.random.default_rng([seed, c, t] if family is None else [seed, family, c, t])
-    return exp.trial(world_factory, exp.conditions[c], learner, rng)
+    return exp.trial(world_factory, exp.conditions[c], learner, rng, decide)
 
 
 Unit = tuple[int, int, int]  # (world factory index, condition index, trial)
 
 
 def _run_chunk(name: str, factories: Sequence[WorldFactory], learner: str, seed: int,
-               units: Sequence[Unit]) -> list[tuple[Unit, TrialResult, float]]:
+               units: Sequence[Unit], decide: str = "map") -> list[tuple[Unit, TrialResult, float]]:
     exp = get_experiment(name)
     out = []
     for unit in units:
@@ -119,7 +122,7 @@ def _run_chunk(name: str, factories: Sequence[WorldFactory], learner: str, seed:
         factory = factories[f]
         family = factory.seed if isinstance(factory, NormFamily) else None
         start = time.perf_counter()
-        result = run_trial(exp, factories[f], learner, seed, c, t, family)
+        result = run_trial(exp, factories[f], learner, seed, c, t, family, decide)
         out.append((unit, result, time.perf_counter() - start))
     return out
 
@@ -129,9 +132,10 @@ def _chunks(pairs: list[Unit], jobs: int) -> list[list[Unit]]:
     return [pairs[i : i + size] for i in range(0, len(pairs), size)]
 
 
-def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None = None) -> None:
-    """BadValue / UnknownName for a trial count or job count below 1, an unknown learner, or both
-    local jobs and a scheduler."""
+def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None = None,
+                   decide: str = "map") -> None:
+    """BadValue / UnknownName for a trial count or job count below 1, an unknown learner, both
+    local jobs and a scheduler, or an unknown decision mode."""
     if trials < 1:
         raise BadValue(f"trials must be at least 1, got {trials}")
     if jobs < 1:
@@ -142,23 +146,26 @@ def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None =
         raise BadValue(f"--jobs {jobs} and --scheduler {scheduler} are alternatives: give one of them")
     if scheduler is not None and not scheduler.strip():
         raise BadValue("--scheduler needs an address such as tcp://host:8786")
+    if decide not in DECISIONS:
+        raise UnknownName("decision mode", decide, DECISIONS)
 
 
 def run_trials(name: str, factories: Sequence[WorldFactory], learner: str, seed: int, units: Sequence[Unit],
-               jobs: int = 1, scheduler: str | None = None,
-               progress: Progress | None = None) -> dict[Unit, tuple[TrialResult, float]]:
+               jobs: int = 1, scheduler: str | None = None, progress: Progress | None = None,
+               decide: str = "map") -> dict[Unit, tuple[TrialResult, float]]:
     """Every unit's trial result and its seconds: in this process (``jobs`` 1, no ``scheduler``), on
-    ``jobs`` local processes, or on the Dask cluster of ``scheduler``; the same results for all."""
+    ``jobs`` local processes, or on the Dask cluster of ``scheduler``; the same results for all.
+    ``decide``: how learned rules decide and are scored (``map`` or ``posterior``)."""
     done: dict[Unit, tuple[TrialResult, float]] = {}
     total = len(units)
     if jobs == 1 and scheduler is None:
-        for unit, result, secs in _iterate_serial(name, factories, learner, seed, units):
+        for unit, result, secs in _iterate_serial(name, factories, learner, seed, units, decide):
             done[unit] = (result, secs)
             if progress:
                 progress(len(done), total)
         return done
     with executor(jobs, scheduler) as (pool, slots):
-        futures = [pool.submit(_run_chunk, name, factories, learner, seed, chunk)
+        futures = [pool.submit(_run_chunk, name, factories, learner, seed, chunk, decide)
                    for chunk in _chunks(list(units), slots)]
         for fut in as_completed(futures):
             for unit, result, secs in fut.result():
@@ -181,6 +188,7 @@ def run_experiment(
     compare: bool = True,
     families: Sequence[NormFamily] = (),
     scheduler: str | None = None,
+    decide: str = "map",
 ) -> ExperimentResult:
     """Run ``trials`` trials of every (selected) condition of experiment ``name``.
 
@@ -192,17 +200,17 @@ def run_experiment(
     ``[seed, s, c, t]``), and each condition reports the mean over families, with its 95% interval
     over families, and the worst family (:func:`~ownctl.experiment.summary.summarise_families`).
     ``scheduler`` (``tcp://host:8786``) runs the trials on that Dask cluster instead of ``jobs``
-    local processes.
+    local processes. ``decide``: how learned rules decide and are scored (``map`` or ``posterior``).
     """
     exp = get_experiment(name)
-    check_settings(trials, jobs, learner, scheduler)
+    check_settings(trials, jobs, learner, scheduler, decide)
     chosen = select_conditions(exp, conditions)
     factories: list[WorldFactory] = list(families) or [world_factory]
     units = [(f, c, t) for f in range(len(factories)) for t in range(trials) for c in chosen]
     start = time.perf_counter()
     if progress:
         progress(0, len(units))
-    done = run_trials(exp.name, factories, learner, seed, units, jobs, scheduler, progress)
+    done = run_trials(exp.name, factories, learner, seed, units, jobs, scheduler, progress, decide)
     per_factory = [[_condition(exp, c, [done[(f, c, t)] for t in range(trials)], compare) for c in chosen]
                    for f in range(len(factories))]
     extra: dict[str, Any] = {"paper_comparable": compare and not families}
@@ -216,7 +224,7 @@ def run_experiment(
         extra["families"] = [_family_dict(fam, per_factory[f]) for f, fam in enumerate(families)]
         world = f"{len(families)} norm families (seeds {families[0].seed}-{families[-1].seed})"
     return ExperimentResult(exp, trials, seed, jobs, learner, tuple(summaries),
-                            time.perf_counter() - start, world, extra, scheduler)
+                            time.perf_counter() - start, world, extra, scheduler, decide)
 
 
 def _condition(exp: Experiment, c: int, results: Sequence[tuple[TrialResult, float]],
@@ -243,6 +251,6 @@ def _family_dict(family: NormFamily, conditions: Sequence[ConditionSummary]) -> 
 
 
 def _iterate_serial(name: str, factories: Sequence[WorldFactory], learner: str, seed: int,
-                    units: Sequence[Unit]) -> Iterator[tuple[Unit, TrialResult, float]]:
+                    units: Sequence[Unit], decide: str = "map") -> Iterator[tuple[Unit, TrialResult, float]]:
     for unit in units:
-        yield from _run_chunk(name, factories, learner, seed, [unit])
+        yield from _run_chunk(name, factories, learner, seed, [unit], decide)

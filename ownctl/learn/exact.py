@@ -124,6 +124,8 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     cost = [model.cost(k) for k in range(max_length + 1)]
     min_cost = [model.min_cost(k) for k in range(max_length + 3)]
     n_lits = len(lits)
+    neg_cost = model.negation_cost * (np.arange(n_lits) % 2)  # literal 2j + 1 is a negation
+    negs = np.zeros(1)  # per node: the negation cost of its literals
     column = np.arange(n_lits)
     after = column[None, :] >= (2 * (column // 2 + 1))[:, None]  # after[x, y]: y's atom comes after x's
     best_at: tuple[int, int] | None = None  # (level, node index) of the best rule
@@ -135,7 +137,7 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     truths = np.ones((1, len(wi)), dtype=bool)
     for length in range(max_length + 1):
         q = forbid(truths | base_truth[None])
-        scores = nll(q) - base_nll + cost[length]
+        scores = nll(q) - base_nll + cost[length] + negs
         top_k = int(np.argmin(scores))  # the first of the lowest: canonical order among equal scores
         top = float(scores[top_k])
         if top < best:
@@ -147,7 +149,7 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
         if length == max_length:
             break
         lo_nll = nll(np.clip(qstar[None], q0[None], q)) - base_nll
-        bounds = lo_nll + min_cost[length + 1]
+        bounds = lo_nll + min_cost[length + 1] + negs
         keep = bounds < min(best, accept) + CAP
         if not keep.all():
             pruned = min(pruned, float(bounds[~keep].min()))
@@ -158,14 +160,16 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
         same = (child == truths[parents]).all(axis=1)
         if same.any():  # covers what its parent covers, for a higher cost: never the best
             k_same = parents[same]
-            twins.append((length, k_same, added[same], scores[k_same] + cost[length + 1] - cost[length]))
+            twins.append((length, k_same, added[same],
+                          scores[k_same] + cost[length + 1] - cost[length] + neg_cost[added[same]]))
             # a twin's refinements are refinements of its parent with two literals more
-            pruned = min(pruned, float(lo_nll[k_same].min()) + min_cost[length + 2])
+            pruned = min(pruned, float((lo_nll[k_same] + negs[k_same]).min()) + min_cost[length + 2])
             parents, added, child = parents[~same], added[~same], child[~same]
         if not len(added):
             break
         levels.append((parents, added))
         allowed = allowed[parents] & ok[added] & after[added]
+        negs = negs[parents] + neg_cost[added]
         truths = child
     if best_at is None or best >= accept:
         lower = min(best, pruned, *(float(x[3].min()) for x in twins))
@@ -279,8 +283,7 @@ def reinduce_greedy(ev: Evidence, action: str, given: Sequence[Rule], atoms: Seq
     drops: list[Drop] = []
     for rule in [r for r in current if r not in given]:
         rest = tuple(r for r in current if r != rule)
-        value = (_objective_nll(model, ev, rest) - _objective_nll(model, ev, current)
-                 - model.cost(len(rule.literals)))
+        value = _objective_nll(model, ev, rest) - _objective_nll(model, ev, current) - model.cost_of(rule)
         drops.append(Drop(current, rule, value))
         if value <= 0:
             current = rest
@@ -294,10 +297,9 @@ SWAP_PASSES = 2  # passes replacing each learned rule by the best rule beside th
 def _step(model: Model, before: tuple[Rule, ...], found: Best) -> Step:
     """The record of choosing ``found.rule`` beside ``before``, with its margin and twins."""
     assert found.rule is not None
-    size = len(found.rule.literals)
-    twin_score = found.score + model.cost(size + 1) - model.cost(size)
+    own = model.cost_of(found.rule)
     return Step(before, found.rule, found.score, found.runner_up - found.score,
-                tuple((r, twin_score) for r in found.twins))
+                tuple((r, found.score + model.cost_of(r) - own) for r in found.twins))
 
 
 @dataclass(frozen=True)

@@ -34,6 +34,7 @@ LABEL_NOISE = 0.003
 RULE_COST = 1.5
 LITERAL_COST = 1.0
 COUNT_WEIGHT = 0.0
+NEGATION_COST = 0.0
 
 
 @dataclass(frozen=True)
@@ -45,6 +46,7 @@ class Model:
     rule_cost: float = RULE_COST
     literal_cost: float = LITERAL_COST
     count_weight: float = COUNT_WEIGHT
+    negation_cost: float = NEGATION_COST
 
     def cost(self, length: int) -> float:
         """``-log`` prior weight of one rule of ``length`` literals (see the module docstring)."""
@@ -56,9 +58,14 @@ class Model:
         lengths = range(length, len(self.counts))
         return min((self.cost(k) for k in lengths), default=math.inf)
 
+    def cost_of(self, rule: Rule) -> float:
+        """``-log`` prior weight of one rule: its length's cost plus ``negation_cost`` per negated
+        literal (a ``not`` is one more word to say)."""
+        return self.cost(len(rule.literals)) + self.negation_cost * sum(x.negated for x in rule.literals)
+
     def rules_cost(self, rules: Sequence[Rule]) -> float:
         """``-log`` prior weight of a rule set (up to the normalising constant)."""
-        return sum(self.cost(len(r.literals)) for r in rules)
+        return sum(self.cost_of(r) for r in rules)
 
     def nll_terms(self, t: np.ndarray, q: np.ndarray) -> np.ndarray:
         """Per-example ``-log P(t_i | q_i)`` (broadcast over leading axes of ``q``)."""
@@ -119,10 +126,10 @@ def rule_counts(atoms: tuple[Literal, ...], max_length: int) -> tuple[int, ...]:
 
 def model_for(atoms: Sequence[Literal], max_length: int) -> Model:
     """The model over the vocabulary ``atoms`` with rules of at most ``max_length`` literals."""
-    return _model(tuple(atoms), max_length, LABEL_NOISE, RULE_COST, LITERAL_COST, COUNT_WEIGHT)
+    return _model(tuple(atoms), max_length, LABEL_NOISE, RULE_COST, LITERAL_COST, COUNT_WEIGHT, NEGATION_COST)
 
 
 @functools.lru_cache(maxsize=256)
 def _model(atoms: tuple[Literal, ...], max_length: int, noise: float, rule_cost: float, literal_cost: float,
-           count_weight: float) -> Model:
-    return Model(rule_counts(atoms, max_length), noise, rule_cost, literal_cost, count_weight)
+           count_weight: float, negation_cost: float) -> Model:
+    return Model(rule_counts(atoms, max_length), noise, rule_cost, literal_cost, count_weight, negation_cost)

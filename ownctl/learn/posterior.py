@@ -35,7 +35,7 @@ from ownctl.learn.induce import subtract
 from ownctl.learn.model import Model, compatible, extensions, literal_list, model_for
 from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
-from ownctl.logic.rules import Literal, Rule, implies
+from ownctl.logic.rules import ANY, Literal, Rule, implies
 
 MAX_RULES = 3  # rules per set beyond the given ones
 POOL = 40  # candidate rules of :func:`rule_posterior`
@@ -85,7 +85,16 @@ class RulePosterior:
 
     def p_forbidden(self, frame: Frame) -> np.ndarray:
         """P(the action is forbidden) for every object of ``frame``, marginalised over rule sets
-        (each set minus the allow norms), with the frame's ownership probabilities."""
+        (each set minus the allow norms), with the frame's ownership probabilities.
+
+        Without allow norms, every rule's truth table over the frame's ownership worlds is built
+        once and all sets' disjunctions are taken together, a block of objects at a time
+        (:meth:`_p_forbidden_tables`); with them (or where a table would leave out some of the
+        frame's agents), set by set with :func:`ownctl.logic.prob.p_forbidden`. Both are exact."""
+        if not self.allows and frame.n:
+            ev = Evidence(frame, np.zeros(frame.n))
+            if len(ev.worlds.atoms) >= int((frame.own.sum(axis=0) > 0).sum()):
+                return self._p_forbidden_tables(frame, len(ev.worlds.bits))
         out = np.zeros(frame.n)
         for rules, p in zip(self.sets, self.probabilities, strict=True):
             if p > 0:
@@ -93,6 +102,23 @@ class RulePosterior:
                 for allow in self.allows:
                     kept = subtract(kept, allow)
                 out += p * p_forbidden(kept, frame)
+        return np.clip(out, 0.0, 1.0)
+
+    def _p_forbidden_tables(self, frame: Frame, worlds: int, cells: int = 1 << 23) -> np.ndarray:
+        """:meth:`p_forbidden` from truth tables (``worlds``: at most that many ownership worlds per
+        object); ``cells`` bounds the (sets, worlds, objects) block held at once."""
+        out = np.zeros(frame.n)
+        step = max(1, cells // max(1, len(self.index) * worlds))
+        for lo in range(0, frame.n, step):
+            part = frame.take(np.arange(lo, min(frame.n, lo + step)))
+            ev = Evidence(part, np.zeros(part.n))
+            shape = ev.worlds.weights.shape
+            truth = np.stack([*(ev.truth(r) for r in self.rules), np.zeros(shape, dtype=bool)])  # -1: none
+            union = np.zeros((len(self.index), *shape), dtype=bool)
+            for c in range(self.index.shape[1]):
+                union |= truth[self.index[:, c]]
+            q = np.clip((union * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
+            out[lo : lo + part.n] = self.probabilities @ q
         return np.clip(out, 0.0, 1.0)
 
     def support(self, rule: Rule, frame: Frame) -> float:
@@ -174,27 +200,13 @@ def _every_rule(action: str, atoms: tuple[Literal, ...], max_length: int
     return tuple(Rule(action, tuple(lits[x] for x in s)) for s in out), index
 
 
-def pool_truth(ev: Evidence, action: str, atoms: Sequence[Literal], max_length: int
-               ) -> tuple[tuple[Rule, ...], np.ndarray]:
-    """Every rule of :func:`every_rule` with its (R, W, n) truth on the examples, vectorised over
-    rules (equal to stacking ``ev.truth(rule)``)."""
-    pool, index = _every_rule(action, tuple(atoms), max_length)
-    lits = literal_list(tuple(atoms))
-    shape = (len(ev.worlds.bits), ev.n)
-    table = np.concatenate([ev.literal_stack(lits), np.ones((1, *shape), dtype=bool)])  # row -1: true
-    truth = table[index[:, 0]]
-    for c in range(1, index.shape[1]):
-        truth = truth & table[index[:, c]]
-    return pool, truth
-
-
 def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray) -> np.ndarray:
     """Unnormalised log posterior of each set (log prior + log likelihood); ``sets`` padded with -1."""
     shape = ev.worlds.weights.shape
     rows = [ev.truth(r) for r in space.pool]
     truth = np.stack([*rows, np.zeros(shape, dtype=bool)])  # row -1: no rule
     base = ev.union(space.given)
-    costs = np.array([*(model.cost(len(r.literals)) for r in space.pool), 0.0])
+    costs = np.array([*(model.cost_of(r) for r in space.pool), 0.0])
     out = np.empty(len(sets))
     for start in range(0, len(sets), 4096):  # in blocks, to bound memory
         index = sets[start : start + 4096]
@@ -222,20 +234,45 @@ def posterior(ev: Evidence, action: str, space: RuleSpace, model: Model,
 
 
 def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: Model, max_length: int,
-                    size: int, around: Sequence[Rule] = ()) -> tuple[Rule, ...]:
+                    size: int, around: Sequence[Rule] = (), cells: int = 1 << 22) -> tuple[Rule, ...]:
     """The ``size`` rules (up to ``max_length`` literals) whose addition most raises the posterior,
     alone or next to all but one of the rules ``around`` (so alternatives to each of them compete),
-    with the rules ``around`` themselves; ties in canonical order."""
-    pool, truth = pool_truth(ev, action, atoms, max_length)
-    lengths = (_every_rule(action, tuple(atoms), max_length)[1] >= 0).sum(axis=1)
-    costs = np.array([model.cost(n) for n in range(max_length + 1)])[lengths]
-    chosen: dict[Rule, None] = {r: None for r in around}
+    with the rules ``around`` themselves; ties in canonical order.
+
+    Candidates name only the agents the examples' ownership worlds name (a rule naming another
+    agent forbids none of the examples, or exactly what the same rule without that literal
+    forbids, at a higher cost: never better supported), and are scored a block of at most
+    ``cells`` truth values at a time, so the work stays bounded however many agents a store knows."""
+    named = set(ev.worlds.atoms)
+    kept = tuple(a for a in atoms if a.pred != "ownedBy" or a.arg == ANY or a.arg in named)
+    pool, index = _every_rule(action, kept, max_length)
+    lits = literal_list(kept)
+    negated = np.r_[np.arange(len(lits)) % 2, 0]
+    lengths = (index >= 0).sum(axis=1)
+    costs = (np.array([model.cost(n) for n in range(max_length + 1)])[lengths]
+             + model.negation_cost * negated[index].sum(axis=1))
     contexts = [()] + [tuple(x for x in around if x != r) for r in around]
+    gains = np.zeros((len(contexts), len(pool)))
+    # truth is kept only over the (world, example) pairs of positive weight, grouped by example
+    ni, wi = np.nonzero(ev.worlds.weights.T > 0)
+    if len(ni):
+        weight = ev.worlds.weights[wi, ni]
+        starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]])
+        table = np.concatenate([ev.literal_stack(lits)[:, wi, ni], np.ones((1, len(ni)), dtype=bool)])
+        bases = [ev.union(context)[wi, ni] for context in contexts]
+        block = max(1, cells // len(ni))
+        for lo in range(0, len(pool), block):
+            rows = index[lo : lo + block]
+            truth = table[rows[:, 0]]
+            for c in range(1, rows.shape[1]):
+                truth = truth & table[rows[:, c]]
+            for k, base in enumerate(bases):
+                q = np.clip(np.add.reduceat((truth | base[None]) * weight, starts, axis=1), 0.0, 1.0)
+                gains[k, lo : lo + len(rows)] = model.nll_terms(ev.t[ni[starts]], q).sum(axis=-1)
+    gains += costs[None, :]
+    chosen: dict[Rule, None] = {r: None for r in around}
     per = max(1, size // len(contexts))
-    for context in contexts:
-        base = ev.union(context)
-        q = np.clip(((truth | base[None]) * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
-        gain = model.nll_terms(ev.t, q).sum(axis=-1) + costs
+    for gain in gains:
         taken = 0
         for k in np.argsort(gain, kind="stable"):
             if taken >= per:

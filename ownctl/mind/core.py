@@ -436,13 +436,16 @@ class Mind:
         return self.rule_posterior(action).support(rule, frame)
 
     def p_rules(self, action: str, obj: int | str) -> float:
-        """P(the action's rules forbid it on the object): on the learned rule set, or with
-        ``decide_rules = "posterior"`` marginalised over the posterior of rule sets."""
-        i = self.obj(obj)
-        frame = self.frame_of([i])
+        """P(the action's rules forbid it on the object), posterior ownership (:meth:`p_rules_on`)."""
+        return float(self.p_rules_on(action, self.frame_of([self.obj(obj)]))[0])
+
+    def p_rules_on(self, action: str, frame: Frame) -> np.ndarray:
+        """P(the action's rules forbid it) for every object of ``frame``: on the learned rule set,
+        or with ``decide_rules = "posterior"`` marginalised over the posterior of rule sets (once
+        the action has permissions)."""
         if self.settings.decide_rules == "posterior" and self.perms[action]:
-            return float(self.rule_posterior(action).p_forbidden(frame)[0])
-        return float(p_forbidden(self.rules[action], frame)[0])
+            return self.rule_posterior(action).p_forbidden(frame)
+        return p_forbidden(self.rules[action], frame)
 
     # -- knowledge ---------------------------------------------------------------------------
     def given(self, action: str) -> list[Rule]:

@@ -101,3 +101,30 @@ def test_bad_settings_are_user_errors() -> None:
         run_experiment("norms", 1, 0, 1, paper_blocks_world, "foil")
     with pytest.raises(UnknownName, match="norms, ownership, task"):
         run_experiment("tables", 1, 0, 1, paper_blocks_world, "ours")
+    with pytest.raises(UnknownName, match="map, posterior"):
+        run_experiment("norms", 1, 0, 1, paper_blocks_world, "ours", decide="mode")
+
+
+def test_posterior_decisions_score_the_marginal_over_rule_sets() -> None:
+    """``decide="posterior"`` scores each action on P(forbidden) marginalised over the rule-set
+    posterior of the very Mind the trial taught, on the objects' true owners: recomputed here."""
+    from ownctl.config import LearnConfig, Settings
+    from ownctl.experiment.metrics import rule_scores
+    from ownctl.experiment.norms import norms_setup, norms_trial
+    from ownctl.mind import Mind, Switches
+
+    cond = NORM_CONDITIONS[5]  # noisy, a quarter of the objects: the rule sets are uncertain
+    got = norms_trial(paper_blocks_world, cond, "ours", np.random.default_rng(3), "posterior")
+    setup = norms_setup(paper_blocks_world, cond, np.random.default_rng(3))
+    mind = Mind(setup.world.agents, list(setup.world.objects), setup.world.areas,
+                Settings(learn=LearnConfig()), Switches(inference=False, prediction=False))
+    mind.claims[:] = setup.claims
+    for obj in setup.chosen:
+        for action in setup.rules:
+            mind.permit(action, int(obj), float(setup.answers[action][obj]))
+    uncertain = 0
+    for action in setup.rules:
+        p = mind.rule_posterior(action).p_forbidden(setup.true_frame)
+        uncertain += int(((p > 0.01) & (p < 0.99)).any())
+        assert got[action] == rule_scores(setup.answers[action], p)
+    assert uncertain  # the marginal is not a single rule set's 0/1 on this trial

@@ -6,15 +6,18 @@ from __future__ import annotations
 
 import itertools
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
 
 from ownctl.config import LearnConfig
 from ownctl.learn.evidence import Evidence, Vocabulary
+from ownctl.learn.induce import subtract
 from ownctl.learn.model import model_for
 from ownctl.learn.posterior import RuleSpace, every_rule, posterior, rule_implies, rule_posterior
 from ownctl.logic.frame import Frame
+from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import ANY, Rule, parse_rule
 
 AGENTS = ("a1", "a2")
@@ -78,7 +81,7 @@ def test_the_posterior_equals_brute_force(seed: int) -> None:
             q = brute_p(rules, list(frame.own[i]), frame.colors[i], bool(frame.areas["desk"][i]))
             p = model.noise + (1 - 2 * model.noise) * q
             loglik += math.log(p if values[i] >= 0.5 else 1 - p)
-        logw.append(loglik - sum(model.cost(len(r.literals)) for r in s))
+        logw.append(loglik - sum(model.cost_of(r) for r in s))
     top = max(logw)
     z = sum(math.exp(v - top) for v in logw)
     brute = {(*given, *s): math.exp(v - top) / z for s, v in zip(sets, logw, strict=True)}
@@ -113,3 +116,38 @@ def test_rule_probabilities_and_support_follow_the_evidence() -> None:
     assert post.support(parse_rule("forbid trash if isColored blue"), frame) < 0.01
     p = post.p_forbidden(frame)
     assert (p[:3] > 0.9).all() and (p[3:] < 0.1).all()
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_p_forbidden_is_the_weighted_sum_over_rule_sets(seed: int) -> None:
+    """The vectorised marginal equals summing each set's exact P(forbidden) one by one, on a frame
+    larger than one block of the computation, and with an allow norm (subtracted from every set)."""
+    frame, values = case(seed)
+    post = rule_posterior(Evidence(frame, values), "trash", VOCAB, LearnConfig())
+    rng = np.random.default_rng(seed)
+    n = 300
+    probe = Frame(AGENTS, rng.choice([0.0, 1.0, 0.2, 0.6], size=(n, 2)),
+                  tuple(str(c) for c in rng.choice(["blue", "red"], size=n)), {"desk": rng.random(n) < 0.5})
+    expected = sum(p * p_forbidden(list(rules), probe) for rules, p in zip(post.sets, post.probabilities,
+                                                                            strict=True))
+    assert np.allclose(post._p_forbidden_tables(probe, 4, cells=len(post.sets) * 4 * 7), expected, atol=1e-9)
+    assert np.allclose(post.p_forbidden(probe), expected, atol=1e-9)
+    allow = parse_rule("forbid trash if isColored blue")
+    with_allow = replace(post, allows=(allow,))
+    kept = sum(p * p_forbidden(subtract(list(rules), allow), probe)
+               for rules, p in zip(post.sets, post.probabilities, strict=True))
+    assert np.allclose(with_allow.p_forbidden(probe), np.clip(kept, 0, 1), atol=1e-9)
+
+
+def test_the_pool_names_only_agents_the_examples_name() -> None:
+    """A store that knows many agents: the candidates, and so the posterior, are those of the
+    vocabulary cut to the agents the examples' ownership names (any other agent's rules cover
+    nothing there, or what a shorter rule covers), and building them stays small."""
+    frame, values = case(5)
+    many = Vocabulary((*AGENTS, *(f"x{k}" for k in range(60))), ("blue", "red"), ("desk",))
+    few = Vocabulary(AGENTS, ("blue", "red"), ("desk",))
+    ev = Evidence(frame, values)
+    wide = rule_posterior(ev, "trash", many, LearnConfig())
+    narrow = rule_posterior(ev, "trash", few, LearnConfig())
+    assert wide.sets == narrow.sets
+    assert not any(lit.arg.startswith("x") for r in wide.rules for lit in r.literals if lit.pred == "ownedBy")
