@@ -128,11 +128,14 @@ class RulePosterior:
         a decision resting on ``rule``."""
         ev = Evidence(frame, np.zeros(frame.n))
         mine = ev.truth(rule) & (ev.worlds.weights > 0)
-        total = 0.0
-        for rules, p in zip(self.sets, self.probabilities, strict=True):
-            if p > 0 and not (mine & ~ev.union(rules)).any():
-                total += float(p)
-        return min(total, 1.0)
+        if not mine.any():
+            return min(float(self.probabilities.sum()), 1.0)
+        where = np.nonzero(mine)  # the (world, object) cells the rule holds in
+        truth = np.stack([*(ev.truth(r)[where] for r in self.rules), np.zeros(len(where[0]), dtype=bool)])
+        covered = np.zeros((len(self.index), len(where[0])), dtype=bool)
+        for c in range(self.index.shape[1]):
+            covered |= truth[self.index[:, c]]
+        return min(float(self.probabilities[covered.all(axis=1)].sum()), 1.0)
 
 
 @dataclass(frozen=True)
@@ -201,22 +204,28 @@ def _every_rule(action: str, atoms: tuple[Literal, ...], max_length: int
 
 
 def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray) -> np.ndarray:
-    """Unnormalised log posterior of each set (log prior + log likelihood); ``sets`` padded with -1."""
-    shape = ev.worlds.weights.shape
-    rows = [ev.truth(r) for r in space.pool]
-    truth = np.stack([*rows, np.zeros(shape, dtype=bool)])  # row -1: no rule
-    base = ev.union(space.given)
+    """Unnormalised log posterior of each set (log prior + log likelihood); ``sets`` padded with -1.
+    Truth is kept only over the (world, example) pairs of positive weight, grouped by example."""
     costs = np.array([*(model.cost_of(r) for r in space.pool), 0.0])
+    ni, wi = np.nonzero(ev.worlds.weights.T > 0)
+    prior = -costs[sets].sum(axis=1)
+    if not len(ni):
+        return prior
+    weight = ev.worlds.weights[wi, ni]
+    starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]])
+    t = ev.t[ni[starts]]
+    truth = np.stack([*(ev.truth(r)[wi, ni] for r in space.pool), np.zeros(len(ni), dtype=bool)])  # -1: none
+    base = ev.union(space.given)[wi, ni]
     out = np.empty(len(sets))
-    for start in range(0, len(sets), 4096):  # in blocks, to bound memory
-        index = sets[start : start + 4096]
-        union = np.broadcast_to(base, (len(index), *base.shape)).copy()
+    block = max(1, (1 << 22) // len(ni))  # sets per block, to bound memory
+    for start in range(0, len(sets), block):
+        index = sets[start : start + block]
+        union = np.broadcast_to(base, (len(index), len(ni))).copy()
         for c in range(index.shape[1]):
             union |= truth[index[:, c]]
-        q = np.clip((union * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
-        nll = model.nll_terms(ev.t, q).sum(axis=-1)
-        out[start : start + len(index)] = -nll - costs[index].sum(axis=1)
-    return out
+        q = np.clip(np.add.reduceat(union * weight, starts, axis=1), 0.0, 1.0)
+        out[start : start + len(index)] = -model.nll_terms(t, q).sum(axis=-1)
+    return out + prior
 
 
 def posterior(ev: Evidence, action: str, space: RuleSpace, model: Model,

@@ -151,3 +151,16 @@ def test_the_pool_names_only_agents_the_examples_name() -> None:
     narrow = rule_posterior(ev, "trash", few, LearnConfig())
     assert wide.sets == narrow.sets
     assert not any(lit.arg.startswith("x") for r in wide.rules for lit in r.literals if lit.pred == "ownedBy")
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_support_is_the_mass_of_the_sets_that_forbid_all_the_rule_forbids(seed: int) -> None:
+    frame, values = case(seed)
+    post = rule_posterior(Evidence(frame, values), "trash", VOCAB, LearnConfig())
+    probe, _ = case(seed + 50)
+    ev = Evidence(probe, np.zeros(probe.n))
+    for rule in post.rules[:12]:
+        mine = ev.truth(rule) & (ev.worlds.weights > 0)
+        expected = sum(p for rules, p in zip(post.sets, post.probabilities, strict=True)
+                       if not (mine & ~ev.union(rules)).any())
+        assert post.support(rule, probe) == pytest.approx(min(expected, 1.0), abs=1e-12)
