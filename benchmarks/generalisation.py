@@ -344,7 +344,8 @@ def _print(report: dict[str, Any]) -> None:
           f"each (ours, paper, allow everything; rules decide by {report.get('decide', 'map')}); "
           "ProbFOIL on the trials in its cache")
     for metric in ("accuracy", "f1"):
-        print(f"\n{metric}: mean over families ± 95% CI [worst family]")
+        unit = "trial" if report["first_family"] == PAPER else "family"
+        print(f"\n{metric}: mean over {unit.replace('y', 'ie')}s ± 95% CI [worst {unit}]")
         print(f"{'condition':15s} {'ours':>20s} {'paper':>20s} {'allow all':>20s} | {'ProbFOIL':>12s} "
               f"{'ours (same)':>12s} {'ours-PF':>14s} {'<PF':>4s} {'<all':>5s}")
         for row in report["conditions"]:
@@ -358,7 +359,8 @@ def _print(report: dict[str, Any]) -> None:
                   f"{_fmt(r['ours_on_probfoil_trials']):>12s} {_fmt(r['paired_ours_minus_probfoil']):>14s} "
                   f"{r['below_probfoil']:4d} {r['below_allow']:5d}")
         counts = ", ".join(str(row[metric]["probfoil"]["families"]) for row in report["conditions"])
-        print(f"(ProbFOIL families per condition: {counts}; worst families: seeds in the --json output)")
+        print(f"(ProbFOIL {unit.replace('y', 'ie')}s per condition: {counts}; worst {unit.replace('y', 'ie')}s: "
+              "in the --json output)")
 
 
 if __name__ == "__main__":

@@ -208,7 +208,7 @@ def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray)
     Truth is kept only over the (world, example) pairs of positive weight, grouped by example."""
     costs = np.array([*(model.cost_of(r) for r in space.pool), 0.0])
     ni, wi = np.nonzero(ev.worlds.weights.T > 0)
-    prior = -costs[sets].sum(axis=1)
+    prior: np.ndarray = -costs[sets].sum(axis=1)
     if not len(ni):
         return prior
     weight = ev.worlds.weights[wi, ni]
@@ -225,7 +225,8 @@ def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray)
             union |= truth[index[:, c]]
         q = np.clip(np.add.reduceat(union * weight, starts, axis=1), 0.0, 1.0)
         out[start : start + len(index)] = -model.nll_terms(t, q).sum(axis=-1)
-    return out + prior
+    total: np.ndarray = out + prior
+    return total
 
 
 def posterior(ev: Evidence, action: str, space: RuleSpace, model: Model,
