@@ -311,7 +311,8 @@ def run(
         with ctx.read() as tx:
             min_gain = float(tx.meta.settings().get("ask.min_gain", ASK_MIN_GAIN))
         answers = OracleAnswers(world) if instructor == "oracle" else None
-        asker = QuestionAsker(object_steps(chosen.action), "ours", ask, min_gain, answers)
+        asker = QuestionAsker(object_steps(chosen.action), "ours", ask, min_gain, answers,
+                              taught=instructor == "oracle")
     try:
         report = run_task(mind, world, chosen, executor, teacher, on_step=saved, asker=asker)
     except OwnctlError as exc:
