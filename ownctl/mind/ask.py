@@ -420,8 +420,9 @@ def horizon(question: Question, names: Sequence[str]) -> int:
     (docs/asking.md, section 4): a permission question (``may``, ``act``) on an object is answered
     anyway when that object is attempted, so only the decisions up to and including it count;
     any other question counts the whole remaining task."""
-    if question.kind in ("may", "act") and question.object in names:
-        return list(names).index(question.object) + 1
+    obj = question.object
+    if question.kind in ("may", "act") and obj is not None and obj in names:
+        return list(names).index(obj) + 1
     return len(names)
 
 
