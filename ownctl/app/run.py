@@ -311,8 +311,7 @@ def run(
         with ctx.read() as tx:
             min_gain = float(tx.meta.settings().get("ask.min_gain", ASK_MIN_GAIN))
         answers = OracleAnswers(world) if instructor == "oracle" else None
-        asker = QuestionAsker(object_steps(chosen.action), "ours", ask, min_gain, answers,
-                              taught=instructor == "oracle")
+        asker = QuestionAsker(object_steps(chosen.action), "ours", ask, min_gain, answers)
     try:
         report = run_task(mind, world, chosen, executor, teacher, on_step=saved, asker=asker)
     except OwnctlError as exc:

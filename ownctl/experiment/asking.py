@@ -4,9 +4,9 @@ Three strategies choose what to ask before the robot acts on an object (docs/ask
 
 - ``ours``: the question of largest value of information
   (:func:`ownctl.mind.ask.best_questions`) for the objects the task will still attempt, asked
-  when its gain is at least ``min_gain``; a permission question (``may``, ``act``) is valued on
-  the decisions up to its object, since the instructor teaches each object's permissions when it
-  is attempted;
+  when its gain is at least ``min_gain``; with ``taught``, a permission question (``may``,
+  ``act``) is valued on the decisions up to its object, since the instructor teaches each
+  object's permissions when it is attempted;
 - ``entropy``: "whose is OBJ?" for the object still to attempt whose ownership is most uncertain
   (largest sum over agents of the binary entropy of the posterior; ties: task order), as ActOwL's
   information-gain choice does;
@@ -115,8 +115,9 @@ class Asked:
 class QuestionAsker:
     """Asks up to ``budget`` questions during a task, one at most before each object.
 
-    ``taught``: the task's instructor teaches every attempted object's permissions, so a permission
-    question's value counts the decisions up to its object (docs/asking.md, section 4). ``answers``
+    ``taught``: value a permission question on the decisions up to its object, as the task's
+    instructor teaches every attempted object's permissions (docs/asking.md, section 4; off by
+    default). ``answers``
     answers them (and the answer is taught); None only lists them (each still counts
     against the budget, so ``budget`` questions are listed).
     """
@@ -128,7 +129,7 @@ class QuestionAsker:
     answers: OracleAnswers | None = None
     rng: np.random.Generator | None = None
     kinds: tuple[str, ...] = ALL_KINDS
-    taught: bool = True
+    taught: bool = False
     asked: list[Asked] = field(default_factory=list)
 
     def __post_init__(self) -> None:
