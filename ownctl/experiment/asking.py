@@ -4,7 +4,9 @@ Three strategies choose what to ask before the robot acts on an object (docs/ask
 
 - ``ours``: the question of largest value of information
   (:func:`ownctl.mind.ask.best_questions`) for the objects the task will still attempt, asked
-  when its gain is at least ``min_gain``;
+  when its gain is at least ``min_gain``; with ``taught``, a permission question (``may``,
+  ``act``) is valued on the decisions up to its object, since the instructor teaches each
+  object's permissions when it is attempted;
 - ``entropy``: "whose is OBJ?" for the object still to attempt whose ownership is most uncertain
   (largest sum over agents of the binary entropy of the posterior; ties: task order), as ActOwL's
   information-gain choice does;
@@ -42,7 +44,7 @@ from ownctl.experiment.truth import TrueNorms
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.vocab import object_steps
 from ownctl.mind import Mind, Switches
-from ownctl.mind.ask import KINDS, Answer, Question, apply_answer, best_questions, candidates
+from ownctl.mind.ask import ALL_KINDS, Answer, Question, apply_answer, best_questions, candidates
 from ownctl.world.generator import paper_blocks_world
 from ownctl.world.model import World
 
@@ -73,6 +75,11 @@ class OracleAnswers:
             i = mind.obj(question.object)
             value = self.truth.forbidden(i, mind.objects[i], [question.action])[question.action]
             return Answer(question, forbid=value >= 0.5)
+        if question.kind == "act":
+            assert question.object is not None
+            i = mind.obj(question.object)
+            values = self.truth.forbidden(i, mind.objects[i], question.steps)
+            return Answer(question, forbids=tuple(s for s in question.steps if values[s] >= 0.5))
         assert question.rule is not None
         frame = self.truth.frame(mind.objects)
         covered = p_forbidden([question.rule], frame) >= 0.5
@@ -108,7 +115,10 @@ class Asked:
 class QuestionAsker:
     """Asks up to ``budget`` questions during a task, one at most before each object.
 
-    ``answers`` answers them (and the answer is taught); None only lists them (each still counts
+    ``taught``: value a permission question on the decisions up to its object, as the task's
+    instructor teaches every attempted object's permissions (docs/asking.md, section 4; off by
+    default). ``answers``
+    answers them (and the answer is taught); None only lists them (each still counts
     against the budget, so ``budget`` questions are listed).
     """
 
@@ -118,7 +128,8 @@ class QuestionAsker:
     min_gain: float = DEFAULT_MIN_GAIN
     answers: OracleAnswers | None = None
     rng: np.random.Generator | None = None
-    kinds: tuple[str, ...] = KINDS
+    kinds: tuple[str, ...] = ALL_KINDS
+    taught: bool = False
     asked: list[Asked] = field(default_factory=list)
 
     def __post_init__(self) -> None:
@@ -133,7 +144,8 @@ class QuestionAsker:
         if self.strategy == "ours":
             seen = {a.question for a in self.asked}
             pool = [q for q in candidates(mind, self.steps, remaining, self.kinds) if q not in seen]
-            best = best_questions(mind, self.steps, remaining, top=1, questions=pool)
+            best = best_questions(mind, self.steps, remaining, top=1, questions=pool,
+                                  taught=self.taught)
             if not best or best[0].gain < self.min_gain:
                 return None
             return best[0].question, best[0].gain

@@ -30,7 +30,9 @@ from ownctl.logic.prob import OTHER, Worlds, enumerate_worlds, p_forbidden, rele
 from ownctl.logic.rules import Norm, Rule
 from ownctl.mind.core import PERMISSION_CUT, Mind
 
-KINDS = ("may", "whose", "rule")  # tie order between kinds of question
+KINDS = ("may", "whose", "rule")  # the kinds ``ownctl ask`` scores (a speaker can answer each)
+#: every kind, in tie order; ``act`` ("may I ACTION OBJ?", answered step by step) is asked during tasks
+ALL_KINDS = ("act", *KINDS)
 HOLDS = ("yes", "no", "partly")
 #: candidate pruning (docs/asking.md, section 3)
 TOP_OBJECTS = 3  # objects asked about: the most likely wrong decisions among those still to visit
@@ -42,19 +44,21 @@ MIN_ANSWER = 1e-4  # answers less probable than this are dropped (the rest renor
 
 @dataclass(frozen=True)
 class Question:
-    """``whose`` OBJ (answered with its owner set), ``may`` STEP OBJ (a permission) or ``rule``
-    RULE (yes: the rule is stated; no: its allow norm is stated; partly: nothing is taught)."""
+    """``whose`` OBJ (answered with its owner set), ``may`` STEP OBJ (a permission), ``act`` ACTION
+    OBJ over ``steps`` (a permission per step) or ``rule`` RULE (yes: the rule is stated; no: its
+    allow norm is stated; partly: nothing is taught)."""
 
     kind: str
     object: str | None = None
     action: str | None = None
     rule: Rule | None = None
+    steps: tuple[str, ...] = ()
 
     def text(self) -> str:
         """The question as the robot asks it."""
         if self.kind == "whose":
             return f"Whose is {self.object}?"
-        if self.kind == "may":
+        if self.kind in ("may", "act"):
             return f"May I {self.action} {self.object}?"
         assert self.rule is not None
         return f"Does '{self.rule.text()}' hold?"
@@ -67,18 +71,20 @@ class Question:
     def sort_key(self) -> tuple[int, str, str, str]:
         """Deterministic order of questions of equal gain: kind (may, whose, rule), then object,
         action and rule text."""
-        return (KINDS.index(self.kind), self.object or "", self.action or "",
+        return (ALL_KINDS.index(self.kind), self.object or "", self.action or "",
                 self.rule.text() if self.rule else "")
 
 
 @dataclass(frozen=True)
 class Answer:
-    """One possible answer: ``owners`` (whose), ``forbid`` (may) or ``holds`` (rule)."""
+    """One possible answer: ``owners`` (whose), ``forbid`` (may), ``forbids`` (act: the steps that
+    are forbidden, the question's other steps allowed) or ``holds`` (rule)."""
 
     question: Question
     owners: tuple[str, ...] | None = None
     forbid: bool | None = None
     holds: str | None = None
+    forbids: tuple[str, ...] | None = None
 
     def text(self) -> str:
         """The answer in words."""
@@ -87,6 +93,9 @@ class Answer:
             return f"{q.object} belongs to {' and '.join(self.owners)}" if self.owners else "nobody's"
         if q.kind == "may":
             return "no, you may not" if self.forbid else "yes, you may"
+        if q.kind == "act":
+            assert self.forbids is not None
+            return f"no, you may not {' or '.join(self.forbids)} it" if self.forbids else "yes, you may"
         return str(self.holds)
 
 
@@ -279,6 +288,27 @@ def p_permission(mind: Mind, step: str, obj: int | str) -> float:
     return LABEL_NOISE + (1 - 2 * LABEL_NOISE) * min(max(q, 0.0), 1.0)
 
 
+def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str
+                                ) -> list[tuple[tuple[str, ...], float]]:
+    """P(each set of forbidden steps) for "may I ACTION OBJ?" answered step by step: the steps
+    share the object's ownership worlds, their rule sets are independent given them, and each
+    step's answer carries the stated model's instructor noise (docs/asking.md, section 2):
+    ``P(B) = sum_w P(w) prod_s (g_s(w) if s in B else 1 - g_s(w))``, ``g_s = noise + (1 - 2 noise) f_s``."""
+    i = mind.obj(obj)
+    frame = mind.frame().take([i])
+    worlds = worlds_for(mind, steps, frame)
+    g = [LABEL_NOISE + (1 - 2 * LABEL_NOISE)
+         * np.clip(step_forbidden(mind.rule_posterior(s), frame, worlds)[:, 0], 0.0, 1.0) for s in steps]
+    out = []
+    for bits in range(2 ** len(steps)):
+        chosen = tuple(s for k, s in enumerate(steps) if bits >> k & 1)
+        joint = np.ones_like(worlds.weights[:, 0])
+        for k, s in enumerate(steps):
+            joint = joint * (g[k] if s in chosen else 1.0 - g[k])
+        out.append((chosen, float((worlds.weights[:, 0] * joint).sum())))
+    return out
+
+
 def rule_answer_probabilities(mind: Mind, rule: Rule) -> dict[str, float]:
     """P(yes), P(no), P(partly) for "does RULE hold?" on the Mind's objects: yes when every object
     the rule describes is forbidden, no when none is, partly otherwise (rule sets from the action's
@@ -308,6 +338,10 @@ def answers(mind: Mind, question: Question) -> list[tuple[Answer, float]]:
         assert question.object is not None and question.action is not None
         p = p_permission(mind, question.action, question.object)
         return _normalised([(Answer(question, forbid=True), p), (Answer(question, forbid=False), 1 - p)])
+    if question.kind == "act":
+        assert question.object is not None
+        return _normalised([(Answer(question, forbids=b), p)
+                            for b, p in action_answer_probabilities(mind, question.steps, question.object)])
     assert question.rule is not None
     probs = rule_answer_probabilities(mind, question.rule)
     return _normalised([(Answer(question, holds=h), probs[h]) for h in HOLDS])
@@ -315,8 +349,9 @@ def answers(mind: Mind, question: Question) -> list[tuple[Answer, float]]:
 
 def apply_answer(mind: Mind, answer: Answer, speaker: str | None = None) -> None:
     """Teach ``answer`` to ``mind`` by the ordinary instructions: an owner set is a claim per agent
-    (owners claimed, every other agent "not theirs"); a permission is :meth:`Mind.permit`; "yes" to a
-    rule is the forbid norm, "no" its allow norm, "partly" teaches nothing."""
+    (owners claimed, every other agent "not theirs"); a permission is :meth:`Mind.permit`, and an
+    answer to ``act`` one permission per step, in the question's step order; "yes" to a rule is the
+    forbid norm, "no" its allow norm, "partly" teaches nothing."""
     q = answer.question
     if q.kind == "whose":
         assert q.object is not None and answer.owners is not None
@@ -325,6 +360,10 @@ def apply_answer(mind: Mind, answer: Answer, speaker: str | None = None) -> None
     elif q.kind == "may":
         assert q.object is not None and q.action is not None
         mind.permit(q.action, q.object, 1.0 if answer.forbid else 0.0, speaker)
+    elif q.kind == "act":
+        assert q.object is not None and answer.forbids is not None
+        for s in q.steps:
+            mind.permit(s, q.object, 1.0 if s in answer.forbids else 0.0, speaker)
     elif answer.holds in ("yes", "no"):
         assert q.rule is not None
         mind.instruct(Norm("forbid" if answer.holds == "yes" else "allow", q.rule), speaker)
@@ -345,18 +384,24 @@ def value_of_information(mind: Mind, question: Question, steps: Sequence[str],
 
 def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
                kinds: Sequence[str] = KINDS, top_objects: int = TOP_OBJECTS,
-               top_rules: int = TOP_RULES) -> list[Question]:
-    """The questions worth scoring (docs/asking.md, section 3): ``whose`` and ``may`` (each step
-    without a permission) on the ``top_objects`` objects whose decisions are most likely wrong
-    (ties: task order), and ``rule`` on the ``top_rules`` rules of each step's posterior whose
-    probability is nearest 1/2 (not yet stated, not certain)."""
+               top_rules: int = TOP_RULES, action: str | None = None) -> list[Question]:
+    """The questions worth scoring (docs/asking.md, section 3), on the first object of ``objects``
+    (the one about to be acted on) and the ``top_objects`` objects whose decisions are most likely
+    wrong (ties: task order): ``may`` for each step without a permission, ``act`` (``action``,
+    default the last step) over those steps when there are two or more, and ``whose``; and
+    ``rule`` on the ``top_rules`` rules of each step's posterior whose probability is nearest 1/2
+    (not yet stated, not certain)."""
     exp = expected_mistakes(mind, steps, objects)
     order = sorted(range(len(exp.objects)), key=lambda k: (-round(float(exp.p_wrong[k]), 12), k))
-    chosen = [exp.objects[k] for k in order[:top_objects] if exp.p_wrong[k] > 0]
+    top = [exp.objects[k] for k in order[:top_objects] if exp.p_wrong[k] > 0]
+    chosen = list(dict.fromkeys([*exp.objects[:1], *top]))
     out: list[Question] = []
     for name in chosen:
+        open_steps = tuple(s for s in steps if mind.permission(s, name) is None)
+        if "act" in kinds and len(open_steps) > 1:
+            out.append(Question("act", name, action or steps[-1], steps=open_steps))
         if "may" in kinds:
-            out += [Question("may", name, s) for s in steps if mind.permission(s, name) is None]
+            out += [Question("may", name, s) for s in open_steps]
         if "whose" in kinds and len(owner_sets(mind, name)) > 1:
             out.append(Question("whose", name))
     if "rule" in kinds:
@@ -369,18 +414,38 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
     return out
 
 
+def horizon(question: Question, names: Sequence[str]) -> int:
+    """How many of the task's objects (``names``, in task order) a question's answer can change the
+    decisions of when every attempted object's permissions are taught right after its decision
+    (docs/asking.md, section 4): a permission question (``may``, ``act``) on an object is answered
+    anyway when that object is attempted, so only the decisions up to and including it count;
+    any other question counts the whole remaining task."""
+    obj = question.object
+    if question.kind in ("may", "act") and obj is not None and obj in names:
+        return list(names).index(obj) + 1
+    return len(names)
+
+
 def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], top: int = 3,
-                   kinds: Sequence[str] = KINDS, questions: Sequence[Question] | None = None) -> list[Scored]:
+                   kinds: Sequence[str] = KINDS, questions: Sequence[Question] | None = None,
+                   taught: bool = False) -> list[Scored]:
     """The ``top`` questions of largest value of information, best first; equal gains (to 1e-9) in
-    :meth:`Question.sort_key` order."""
+    :meth:`Question.sort_key` order. ``taught``: the objects' permissions will be taught as each is
+    attempted, so a permission question's value counts only the decisions up to its object
+    (:func:`horizon`)."""
     pool = candidates(mind, steps, objects, kinds) if questions is None else list(questions)
-    before = expected_mistakes(mind, steps, objects).total
-    scored = [value_of_information(mind, q, steps, objects, before) for q in pool]
+    objs = list(objects)
+    if not taught:
+        before = expected_mistakes(mind, steps, objs).total
+        scored = [value_of_information(mind, q, steps, objs, before) for q in pool]
+    else:
+        names = [mind.objects[mind.obj(o)].name for o in objs]
+        scored = [value_of_information(mind, q, steps, objs[: horizon(q, names)]) for q in pool]
     scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key()))
     return scored[:top]
 
 
-__all__ = ["HOLDS", "KINDS", "OTHER", "Answer", "Expectation", "Question", "Scored", "answers",
-           "apply_answer", "best_questions", "candidates", "decisions", "expected_mistakes",
-           "owner_sets", "p_permission", "rule_answer_probabilities", "step_forbidden", "worlds_for",
-           "value_of_information"]
+__all__ = ["ALL_KINDS", "HOLDS", "KINDS", "OTHER", "Answer", "Expectation", "Question", "Scored",
+           "action_answer_probabilities", "answers", "apply_answer", "best_questions", "candidates",
+           "decisions", "expected_mistakes", "horizon", "owner_sets", "p_permission",
+           "rule_answer_probabilities", "step_forbidden", "worlds_for", "value_of_information"]

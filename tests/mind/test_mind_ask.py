@@ -25,10 +25,12 @@ from ownctl.mind import Mind
 from ownctl.mind.ask import (
     Answer,
     Question,
+    action_answer_probabilities,
     apply_answer,
     best_questions,
     candidates,
     expected_mistakes,
+    horizon,
     owner_sets,
     rule_answer_probabilities,
     step_forbidden,
@@ -153,8 +155,27 @@ def brute_answers(mind: Mind, q: Question) -> list[tuple[Answer, float]]:
         f = sum(w * brute_forbidden(mind, q.action, i, o) for o, w in owner_worlds(post[i]))
         p = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * f
         return [(Answer(q, forbid=True), p), (Answer(q, forbid=False), 1 - p)]
+    if q.kind == "act":
+        return brute_action_answers(mind, q)
     probs = brute_rule_answers(mind, q.rule)
     return [(Answer(q, holds=h), p) for h, p in probs.items()]
+
+
+def brute_action_answers(mind: Mind, q: Question) -> list[tuple[Answer, float]]:
+    """P(each set of forbidden steps): every owner set of the object, each step's answer true with
+    its probability under that owner set and flipped with the instructor noise."""
+    i = mind.obj(q.object)
+    post = mind.posterior()
+    out = []
+    for bits in itertools.product((False, True), repeat=len(q.steps)):
+        total = 0.0
+        for owners, w in owner_worlds(post[i]):
+            for s, b in zip(q.steps, bits, strict=True):
+                g = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * brute_forbidden(mind, s, i, owners)
+                w *= g if b else 1 - g
+            total += w
+        out.append((Answer(q, forbids=tuple(s for s, b in zip(q.steps, bits, strict=True) if b)), total))
+    return out
 
 
 def brute_rule_answers(mind: Mind, rule: Rule) -> dict[str, float]:
@@ -179,13 +200,15 @@ def brute_rule_answers(mind: Mind, rule: Rule) -> dict[str, float]:
 
 
 QUESTIONS = {"whose": Question("whose", "o1"), "may": Question("may", "o2", "pickUp"),
+             "act": Question("act", "o2", "trash", steps=STEPS),
              "rule": Question("rule", action="trash", rule=parse_norm("forbid trash if isColored red").rule)}
 
 
 @pytest.mark.parametrize(("seed", "kind"), [
-    (0, "may"), (0, "whose"),
+    (0, "may"), (0, "whose"), (1, "act"),
     *[pytest.param(s, k, marks=pytest.mark.slow) for s, k in
-      [(0, "rule"), (1, "may"), (1, "whose"), (1, "rule"), (2, "may"), (2, "whose"), (2, "rule")]],
+      [(0, "rule"), (0, "act"), (2, "act"), (1, "may"), (1, "whose"), (1, "rule"), (2, "may"),
+       (2, "whose"), (2, "rule")]],
 ])
 def test_value_of_information_equals_brute_force(seed: int, kind: str) -> None:
     mind = small_mind(seed, n=3)
@@ -194,7 +217,7 @@ def test_value_of_information_equals_brute_force(seed: int, kind: str) -> None:
     for q in [QUESTIONS[kind]]:
         scored = value_of_information(mind, q, STEPS, objects)
         brute = brute_answers(mind, q)
-        if q.kind == "whose":
+        if q.kind in ("whose", "act"):
             brute = [(a, p) for a, p in brute if p >= 1e-4]
         z = sum(p for _, p in brute)
         after = 0.0
@@ -218,6 +241,46 @@ def test_rule_answers_equal_brute_force() -> None:
             assert got[h] == pytest.approx(want[h], abs=1e-9), (text, h)
 
 
+def test_action_answers_equal_brute_force_and_sum_to_one() -> None:
+    for seed in (1, 3):
+        mind = small_mind(seed, allow=seed == 3)
+        q = Question("act", "o1", "trash", steps=STEPS)
+        got = dict(action_answer_probabilities(mind, STEPS, "o1"))
+        want = {a.forbids: p for a, p in brute_action_answers(mind, q)}
+        assert set(got) == set(want) and len(got) == 2 ** len(STEPS)
+        for b, p in want.items():
+            assert got[b] == pytest.approx(p, abs=1e-9), b
+        assert sum(got.values()) == pytest.approx(1.0, abs=1e-12)
+
+
+def test_candidates_include_the_object_about_to_be_acted_on() -> None:
+    mind = small_mind(0)
+    for first in range(len(mind.objects)):
+        objects = [first, *[i for i in range(len(mind.objects)) if i != first]]
+        pool = candidates(mind, STEPS, objects, kinds=("act", "may", "whose"), top_objects=1)
+        name = mind.objects[first].name
+        open_steps = tuple(s for s in STEPS if mind.permission(s, name) is None)
+        assert all(Question("may", name, s) in pool for s in open_steps)
+        assert (Question("act", name, "trash", steps=open_steps) in pool) == (len(open_steps) > 1)
+
+
+def test_taught_permission_questions_count_the_decisions_up_to_their_object() -> None:
+    mind = small_mind(2, n=4)
+    objects = [3, 1, 0, 2]
+    names = [mind.objects[i].name for i in objects]
+    assert horizon(Question("act", "o0", "trash", steps=STEPS), names) == 3
+    assert horizon(Question("may", "o3", "find"), names) == 1
+    assert horizon(Question("whose", "o3"), names) == 4
+    pool = [Question("act", "o1", "trash", steps=STEPS), Question("may", "o0", "pickUp"),
+            Question("whose", "o2")]
+    ranked = best_questions(mind, STEPS, objects, top=3, questions=pool, taught=True)
+    for scored in ranked:
+        cut = objects[: horizon(scored.question, names)]
+        direct = value_of_information(mind, scored.question, STEPS, cut)
+        assert scored.gain == pytest.approx(direct.gain, abs=1e-12)
+        assert scored.before == pytest.approx(brute_em(mind, cut), abs=1e-9)
+
+
 def test_owner_sets_are_the_posterior_product() -> None:
     mind = small_mind(1)
     sets = dict(owner_sets(mind, "o2"))
@@ -231,6 +294,8 @@ def test_answers_go_through_the_ordinary_instructions() -> None:
         (Answer(Question("whose", "o2"), owners=("bob",)),
          lambda m: (m.claim("o2", "ann", 1.0, negated=True), m.claim("o2", "bob", 1.0, negated=False))),
         (Answer(Question("may", "o3", "trash"), forbid=True), lambda m: m.permit("trash", "o3", 1.0)),
+        (Answer(Question("act", "o3", "trash", steps=STEPS), forbids=("pickUp",)),
+         lambda m: [m.permit(s, "o3", 1.0 if s == "pickUp" else 0.0) for s in STEPS]),
         (Answer(Question("rule", action="trash", rule=parse_norm("forbid trash if ownedBy ann").rule),
                 holds="yes"), lambda m: m.instruct(parse_norm("forbid trash if ownedBy ann"))),
         (Answer(Question("rule", action="trash", rule=parse_norm("forbid trash if isColored red").rule),
@@ -246,7 +311,7 @@ def test_answers_go_through_the_ordinary_instructions() -> None:
         assert a.rules == b.rules and a.allows == b.allows
         assert np.allclose(a.posterior(), b.posterior())
     partly = base.fork()
-    apply_answer(partly, Answer(cases[2][0].question, holds="partly"))
+    apply_answer(partly, Answer(cases[3][0].question, holds="partly"))
     assert partly.rules == base.rules and partly.perms == base.perms
 
 
