@@ -39,7 +39,8 @@ NEGATION_COST = 0.0
 
 @dataclass(frozen=True)
 class Model:
-    """Prior and noise of the stated model; ``counts[l]`` = N(l), the number of rules of l literals."""
+    """Prior and noise of the stated model; ``counts[l]`` = N(l), the number of rules of l literals
+    (counted only when ``count_weight`` uses them, else 0; one entry per length up to the longest)."""
 
     counts: tuple[int, ...]
     noise: float = LABEL_NOISE
@@ -132,4 +133,7 @@ def model_for(atoms: Sequence[Literal], max_length: int) -> Model:
 @functools.lru_cache(maxsize=256)
 def _model(atoms: tuple[Literal, ...], max_length: int, noise: float, rule_cost: float, literal_cost: float,
            count_weight: float, negation_cost: float) -> Model:
-    return Model(rule_counts(atoms, max_length), noise, rule_cost, literal_cost, count_weight, negation_cost)
+    # N(l) enters the prior only through count_weight: without it, the rules are not enumerated
+    # (with many agents there are hundreds of thousands of them)
+    counts = rule_counts(atoms, max_length) if count_weight else (0,) * (max_length + 1)
+    return Model(counts, noise, rule_cost, literal_cost, count_weight, negation_cost)

@@ -118,14 +118,14 @@ def test_rule_probabilities_and_support_follow_the_evidence() -> None:
     assert (p[:3] > 0.9).all() and (p[3:] < 0.1).all()
 
 
-@pytest.mark.parametrize("seed", range(4))
+@pytest.mark.parametrize("seed", range(2))
 def test_p_forbidden_is_the_weighted_sum_over_rule_sets(seed: int) -> None:
     """The vectorised marginal equals summing each set's exact P(forbidden) one by one, on a frame
     larger than one block of the computation, and with an allow norm (subtracted from every set)."""
     frame, values = case(seed)
     post = rule_posterior(Evidence(frame, values), "trash", VOCAB, LearnConfig())
     rng = np.random.default_rng(seed)
-    n = 300
+    n = 40
     probe = Frame(AGENTS, rng.choice([0.0, 1.0, 0.2, 0.6], size=(n, 2)),
                   tuple(str(c) for c in rng.choice(["blue", "red"], size=n)), {"desk": rng.random(n) < 0.5})
     expected = sum(p * p_forbidden(list(rules), probe) for rules, p in zip(post.sets, post.probabilities,
