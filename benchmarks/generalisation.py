@@ -359,8 +359,8 @@ def _print(report: dict[str, Any]) -> None:
                   f"{_fmt(r['ours_on_probfoil_trials']):>12s} {_fmt(r['paired_ours_minus_probfoil']):>14s} "
                   f"{r['below_probfoil']:4d} {r['below_allow']:5d}")
         counts = ", ".join(str(row[metric]["probfoil"]["families"]) for row in report["conditions"])
-        print(f"(ProbFOIL {unit.replace('y', 'ie')}s per condition: {counts}; worst {unit.replace('y', 'ie')}s: "
-              "in the --json output)")
+        units = unit.replace("y", "ie") + "s"
+        print(f"(ProbFOIL {units} per condition: {counts}; worst {units}: in the --json output)")
 
 
 if __name__ == "__main__":
