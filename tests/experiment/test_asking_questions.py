@@ -5,6 +5,7 @@ questions (docs/asking.md, section 4)."""
 from __future__ import annotations
 
 import numpy as np
+import pytest
 
 from ownctl.experiment.asking import OracleAnswers, QuestionAsker
 from ownctl.experiment.truth import TrueNorms
@@ -42,6 +43,7 @@ def test_the_oracle_answers_may_i_act_step_by_step() -> None:
             assert answer.forbids == tuple(s for s in STEPS if values[s] >= 0.5)
 
 
+@pytest.mark.slow
 def test_ours_asks_after_the_first_permission_the_best_taught_question() -> None:
     w = world(1)
     mind = Mind(w.agents, list(w.objects), list(w.areas))

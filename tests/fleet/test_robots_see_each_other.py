@@ -175,6 +175,7 @@ def _events(robot: Ownctl) -> list[dict[str, Any]]:
     return list(query.events(robot._context()))
 
 
+@pytest.mark.slow
 def test_two_robots_see_each_other_on_sqlite(tmp_path: Path) -> None:
     db = str(tmp_path / "two.db")
     _prepare(db)

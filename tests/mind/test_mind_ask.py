@@ -205,9 +205,9 @@ QUESTIONS = {"whose": Question("whose", "o1"), "may": Question("may", "o2", "pic
 
 
 @pytest.mark.parametrize(("seed", "kind"), [
-    (0, "may"), (0, "whose"), (1, "act"),
+    (0, "may"), (0, "whose"),
     *[pytest.param(s, k, marks=pytest.mark.slow) for s, k in
-      [(0, "rule"), (0, "act"), (2, "act"), (1, "may"), (1, "whose"), (1, "rule"), (2, "may"),
+      [(1, "act"), (0, "rule"), (0, "act"), (2, "act"), (1, "may"), (1, "whose"), (1, "rule"), (2, "may"),
        (2, "whose"), (2, "rule")]],
 ])
 def test_value_of_information_equals_brute_force(seed: int, kind: str) -> None:
@@ -241,6 +241,7 @@ def test_rule_answers_equal_brute_force() -> None:
             assert got[h] == pytest.approx(want[h], abs=1e-9), (text, h)
 
 
+@pytest.mark.slow
 def test_action_answers_equal_brute_force_and_sum_to_one() -> None:
     for seed in (1, 3):
         mind = small_mind(seed, allow=seed == 3)
@@ -356,6 +357,7 @@ def draw_world(mind: Mind, rng: np.random.Generator) -> World:
                  owners)
 
 
+@pytest.mark.slow
 def test_expected_mistakes_match_simulated_tasks() -> None:
     mind = small_mind(7, n=6, perms=4)
     objects = [i for i in range(6) if not AREAS[1].contains(np.array(mind.objects[i].position[:2]))[0]]
