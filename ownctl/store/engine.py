@@ -32,7 +32,7 @@ from ownctl.store.models import APPLICATION
 from ownctl.store.repo import Tx
 
 SQLITE_MAGIC = b"SQLite format 3\x00"
-BUSY_TIMEOUT_MS = 5000
+BUSY_TIMEOUT_MS = 30_000  # as long as PostgreSQL's lock wait: a fleet of writers queues for seconds
 #: PostgreSQL: writers take this transaction-scoped advisory lock first, so that writes are
 #: serialised in one order (no deadlock, no lost update) as SQLite's BEGIN IMMEDIATE does.
 WRITE_LOCK_KEY = 0x6F776E63  # "ownc"

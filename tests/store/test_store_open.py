@@ -106,7 +106,7 @@ def test_connection_pragmas(tmp_path: Path) -> None:
     store = open_store(_new(tmp_path), create=True)
     with store.engine.connect() as conn:
         assert conn.exec_driver_sql("PRAGMA foreign_keys").scalar() == 1
-        assert conn.exec_driver_sql("PRAGMA busy_timeout").scalar() == 5000
+        assert conn.exec_driver_sql("PRAGMA busy_timeout").scalar() == 30_000
         assert conn.exec_driver_sql("PRAGMA journal_mode").scalar() == "wal"
     store.close()
 
