@@ -134,9 +134,8 @@ def run(
     if exp.name != "task" and task != "both":
         raise BadValue(f"--task only applies to the task experiment, not {exp.name!r}")
     chosen_families = _families(exp.name, families, family_seed, world)
-    for what, path in (("csv", csv_path), ("plot", plot_path)):
-        if path is not None and not Path(path).parent.exists():
-            raise OwnctlError(f"cannot write the {what} file {str(path)!r}: its folder does not exist")
+    check_folder("csv", csv_path)
+    check_folder("plot", plot_path)
     factory, name, comparable = _world_factory(world)
     result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name,
                             comparable, chosen_families, scheduler, decide)
@@ -211,6 +210,13 @@ def _paper_value(paper: Mapping[str, Any], headline: str, group: str, row: str, 
     if group == "ownership" and isinstance(paper.get("ownership"), Mapping):
         return paper["ownership"].get(metric, "")
     return ""
+
+
+def check_folder(what: str, path: str | Path | None) -> None:
+    """OwnctlError, before any work, if the ``what`` file ``path`` could not be written: its folder
+    does not exist."""
+    if path is not None and not Path(path).parent.exists():
+        raise OwnctlError(f"cannot write the {what} file {str(path)!r}: its folder does not exist")
 
 
 def write_csv(result: ExperimentResult, path: str | Path) -> None:

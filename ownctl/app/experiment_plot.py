@@ -74,12 +74,7 @@ def write_plot(result: ExperimentResult, path: str | Path) -> None:
     axes[0][0].legend(fontsize=8, loc="lower left")
     fig.suptitle(f"{result.experiment.title} ({result.trials} trials, seed {result.seed}, 95% CI)")
     fig.tight_layout()
-    try:
-        fig.savefig(path, dpi=110)
-    except OSError as exc:
-        raise OwnctlError(f"cannot write the plot file {str(path)!r}: {exc.strerror}") from None
-    finally:
-        plt.close(fig)
+    save(fig, path)
 
 
 def write_reliability(calibration: list[dict[str, Any]], path: str | Path) -> None:
@@ -104,6 +99,38 @@ def write_reliability(calibration: list[dict[str, Any]], path: str | Path) -> No
     axes[0][0].set_ylabel("observed frequency")
     axes[0][0].legend(fontsize=7, loc="upper left")
     fig.tight_layout()
+    save(fig, path)
+
+
+def write_ask_plot(result: dict[str, Any], path: str | Path) -> None:
+    """Mistakes against questions asked, per task, a line per strategy (PNG)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    tasks = result["tasks"]
+    fig, axes = plt.subplots(1, len(tasks), figsize=(4.6 * len(tasks), 4.0), squeeze=False)
+    for ax, task in zip(axes[0], tasks, strict=True):
+        for k, strategy in enumerate(result["strategies"]):
+            rows = [r for r in task["runs"] if r["strategy"] == strategy]
+            ax.errorbar([r["questions"] for r in rows], [r["mistakes"] for r in rows],
+                        yerr=[r["ci95"] for r in rows], marker="o", capsize=3, color=f"C{k}", label=strategy)
+        ax.set_title(task["task"])
+        ax.set_xlabel("questions asked per task (mean)")
+        ax.set_ylabel("mistakes per task")
+        ax.set_ylim(bottom=0)
+        ax.grid(alpha=0.3)
+    axes[0][0].legend(fontsize=8)
+    fig.suptitle(f"Asking during the task ({result['trials']} trials, seed {result['seed']}, 95% CI)")
+    fig.tight_layout()
+    save(fig, path)
+
+
+def save(fig: Any, path: str | Path) -> None:
+    """Write ``fig`` as a PNG and close it; an unwritable path is one user error."""
+    import matplotlib.pyplot as plt
+
     try:
         fig.savefig(path, dpi=110)
     except OSError as exc:

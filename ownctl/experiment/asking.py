@@ -38,6 +38,7 @@ from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.kinematic import KinematicExecutor
 from ownctl.experiment.online import TASK_CONDITIONS
 from ownctl.experiment.oracle import OracleInstructor
+from ownctl.experiment.runner import check_settings
 from ownctl.experiment.student import t_quantile
 from ownctl.experiment.task import get_task, run_task
 from ownctl.experiment.truth import TrueNorms
@@ -235,8 +236,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     document: per task, per strategy, per budget the mean mistakes with its 95% interval and the
     mean number of questions asked, and the paired difference ours - entropy per budget.
     """
-    if trials < 1 or jobs < 1:
-        raise BadValue(f"trials and jobs must be at least 1, got {trials} and {jobs}")
+    check_settings(trials, jobs, "ours")
     names = [c.name for c in TASK_CONDITIONS]
     conds = [names.index(t) for t in tasks]
     units = [Unit(c, t, s, b) for c in conds for t in range(trials) for b in budgets

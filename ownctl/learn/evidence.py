@@ -124,6 +124,41 @@ class Evidence:
             out |= self.truth(rule)
         return out
 
+    @functools.cached_property
+    def pairs(self) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+        """The (world, example) pairs of positive weight, grouped by example: their world index,
+        example index and weight, and where each example's pairs start. Truth kept over these pairs
+        alone gives every probability exactly (the other pairs weigh nothing), and with exact
+        ownership there is one pair per example however many agents there are."""
+        ni, wi = np.nonzero(self.worlds.weights.T > 0)
+        starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]]) if len(ni) else np.zeros(0, dtype=int)
+        return wi, ni, self.worlds.weights[wi, ni], starts
+
+    def pair_literals(self, lits: tuple[Literal, ...]) -> np.ndarray:
+        """(literals, pairs) truth of each literal at each pair of :attr:`pairs`, the literals given
+        as atom, negation, atom, negation... (made once per literal list)."""
+        cache = self.__dict__.setdefault("_pair_rows", {})
+        got = cache.get(lits)
+        if got is None:
+            wi, ni, _, _ = self.pairs
+            rows = []
+            for k in range(0, len(lits), 2):
+                atom = atom_truth(lits[k], self.frame, self.worlds)
+                row = (atom[0, ni] if atom.shape[0] == 1 else atom[wi, 0] if atom.shape[1] == 1
+                       else atom[wi, ni])
+                rows += [row, ~row]
+            got = cache[lits] = np.array(rows, dtype=bool).reshape(len(lits), len(wi))
+        out: np.ndarray = got
+        return out
+
+    def pair_prob(self, truth: np.ndarray) -> np.ndarray:
+        """Exact probability per example of a truth table over :attr:`pairs`, (..., P) -> (..., n)."""
+        _, ni, weight, starts = self.pairs
+        if not len(ni):
+            return np.zeros((*truth.shape[:-1], self.n))
+        out: np.ndarray = np.clip(np.add.reduceat(truth * weight, starts, axis=-1), 0.0, 1.0)
+        return out
+
     def prob(self, truth: np.ndarray) -> np.ndarray:
         """Exact probability per example of a truth table (..., W, n) -> (..., n)."""
         out: np.ndarray = np.clip((truth * self.worlds.weights).sum(axis=-2), 0.0, 1.0)

@@ -65,22 +65,6 @@ def canonical_order(ev: Evidence) -> tuple[Evidence, list[int], list[bytes]]:
     return ev.reordered(order), order, [digests[i] for i in order]
 
 
-def _pair_table(ev: Evidence, lits: tuple[Literal, ...], wi: np.ndarray, ni: np.ndarray) -> np.ndarray:
-    """(literals, pairs) truth of each literal at each positive-weight (world, example) pair, made
-    once per evidence."""
-    cache = ev.__dict__.setdefault("_pairs", {})
-    got = cache.get(lits)
-    if got is None:
-        rows = []
-        for k in range(0, len(lits), 2):  # an atom, then its negation
-            atom = atom_truth(lits[k], ev.frame, ev.worlds)
-            row = atom[0, ni] if atom.shape[0] == 1 else atom[wi, 0] if atom.shape[1] == 1 else atom[wi, ni]
-            rows += [row, ~row]
-        got = cache[lits] = np.array(rows, dtype=bool).reshape(len(lits), len(wi))
-    out: np.ndarray = got
-    return out
-
-
 def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[Literal], model: Model,
               max_length: int, accept: float = 0.0, weight: np.ndarray | None = None) -> Best:
     """The rule whose addition to ``base`` most lowers the objective (score = change of the
@@ -93,12 +77,9 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     atoms = tuple(atoms)
     lits = literal_list(atoms)
     ok = compatible(atoms)
-    # only (world, example) pairs of positive weight matter: truth tables are kept over those pairs,
-    # and an example's forbid probability is a product with the pairs' weight matrix
-    ni, wi = np.nonzero(ev.worlds.weights.T > 0)  # grouped by example
-    pair_weight = ev.worlds.weights[wi, ni]
-    starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]]) if len(ni) else np.zeros(0, dtype=int)
-    table = _pair_table(ev, lits, wi, ni)  # (2A, P)
+    # only (world, example) pairs of positive weight matter: truth tables are kept over those pairs
+    wi, ni, _, _ = ev.pairs
+    table = ev.pair_literals(lits)  # (2A, P)
     base_truth = ev.union(base)[wi, ni]
     t = ev.t
     w = np.ones(ev.n) if weight is None else weight
@@ -113,12 +94,7 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
         signed: np.ndarray = -(w * np.log(np.where(sign > 0, p, 1.0 - p))).sum(axis=-1)
         return signed
 
-    def forbid(truth: np.ndarray) -> np.ndarray:
-        if not len(ni):
-            return np.zeros((len(truth), ev.n))
-        return np.clip(np.add.reduceat(truth * pair_weight, starts, axis=1), 0.0, 1.0)
-
-    q0 = forbid(base_truth[None])[0]
+    q0 = ev.pair_prob(base_truth[None])[0]
     base_nll = float(nll(q0[None])[0])
     qstar = model.best_q(t)
     cost = [model.cost(k) for k in range(max_length + 1)]
@@ -136,7 +112,7 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     allowed = np.ones((1, n_lits), dtype=bool)  # literals each node may still be extended with
     truths = np.ones((1, len(wi)), dtype=bool)
     for length in range(max_length + 1):
-        q = forbid(truths | base_truth[None])
+        q = ev.pair_prob(truths | base_truth[None])
         scores = nll(q) - base_nll + cost[length] + negs
         top_k = int(np.argmin(scores))  # the first of the lowest: canonical order among equal scores
         top = float(scores[top_k])

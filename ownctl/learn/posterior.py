@@ -114,10 +114,7 @@ class RulePosterior:
             ev = Evidence(part, np.zeros(part.n))
             shape = ev.worlds.weights.shape
             truth = np.stack([*(ev.truth(r) for r in self.rules), np.zeros(shape, dtype=bool)])  # -1: none
-            union = np.zeros((len(self.index), *shape), dtype=bool)
-            for c in range(self.index.shape[1]):
-                union |= truth[self.index[:, c]]
-            q = np.clip((union * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
+            q = np.clip((_unions(truth, self.index) * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
             out[lo : lo + part.n] = self.probabilities @ q
         return np.clip(out, 0.0, 1.0)
 
@@ -132,10 +129,8 @@ class RulePosterior:
             return min(float(self.probabilities.sum()), 1.0)
         where = np.nonzero(mine)  # the (world, object) cells the rule holds in
         truth = np.stack([*(ev.truth(r)[where] for r in self.rules), np.zeros(len(where[0]), dtype=bool)])
-        covered = np.zeros((len(self.index), len(where[0])), dtype=bool)
-        for c in range(self.index.shape[1]):
-            covered |= truth[self.index[:, c]]
-        return min(float(self.probabilities[covered.all(axis=1)].sum()), 1.0)
+        covered = _unions(truth, self.index).all(axis=1)
+        return min(float(self.probabilities[covered].sum()), 1.0)
 
 
 @dataclass(frozen=True)
@@ -205,28 +200,31 @@ def _every_rule(action: str, atoms: tuple[Literal, ...], max_length: int
 
 def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray) -> np.ndarray:
     """Unnormalised log posterior of each set (log prior + log likelihood); ``sets`` padded with -1.
-    Truth is kept only over the (world, example) pairs of positive weight, grouped by example."""
+    Truth is kept only over the positive-weight pairs of the examples (:attr:`Evidence.pairs`)."""
     costs = np.array([*(model.cost_of(r) for r in space.pool), 0.0])
-    ni, wi = np.nonzero(ev.worlds.weights.T > 0)
     prior: np.ndarray = -costs[sets].sum(axis=1)
+    wi, ni, _, _ = ev.pairs
     if not len(ni):
         return prior
-    weight = ev.worlds.weights[wi, ni]
-    starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]])
-    t = ev.t[ni[starts]]
-    truth = np.stack([*(ev.truth(r)[wi, ni] for r in space.pool), np.zeros(len(ni), dtype=bool)])  # -1: none
+    truth = np.stack([*(ev.truth(r)[wi, ni] for r in space.pool), np.zeros(len(ni), dtype=bool)])
     base = ev.union(space.given)[wi, ni]
     out = np.empty(len(sets))
     block = max(1, (1 << 22) // len(ni))  # sets per block, to bound memory
     for start in range(0, len(sets), block):
         index = sets[start : start + block]
-        union = np.broadcast_to(base, (len(index), len(ni))).copy()
-        for c in range(index.shape[1]):
-            union |= truth[index[:, c]]
-        q = np.clip(np.add.reduceat(union * weight, starts, axis=1), 0.0, 1.0)
-        out[start : start + len(index)] = -model.nll_terms(t, q).sum(axis=-1)
+        q = ev.pair_prob(_unions(truth, index) | base)
+        out[start : start + len(index)] = -model.nll_terms(ev.t, q).sum(axis=-1)
     total: np.ndarray = out + prior
     return total
+
+
+def _unions(truth: np.ndarray, index: np.ndarray) -> np.ndarray:
+    """(K, ...) disjunction of the rows ``index[k]`` of ``truth``, whose last row is all false (so
+    that -1 pads a smaller set)."""
+    out = np.zeros((len(index), *truth.shape[1:]), dtype=bool)
+    for c in range(index.shape[1]):
+        out |= truth[index[:, c]]
+    return out
 
 
 def posterior(ev: Evidence, action: str, space: RuleSpace, model: Model,
@@ -263,12 +261,9 @@ def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: 
              + model.negation_cost * negated[index].sum(axis=1))
     contexts = [()] + [tuple(x for x in around if x != r) for r in around]
     gains = np.zeros((len(contexts), len(pool)))
-    # truth is kept only over the (world, example) pairs of positive weight, grouped by example
-    ni, wi = np.nonzero(ev.worlds.weights.T > 0)
+    wi, ni, _, _ = ev.pairs  # truth is kept only over the positive-weight pairs
     if len(ni):
-        weight = ev.worlds.weights[wi, ni]
-        starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]])
-        table = np.concatenate([ev.literal_stack(lits)[:, wi, ni], np.ones((1, len(ni)), dtype=bool)])
+        table = np.concatenate([ev.pair_literals(lits), np.ones((1, len(ni)), dtype=bool)])  # -1: true
         bases = [ev.union(context)[wi, ni] for context in contexts]
         block = max(1, cells // len(ni))
         for lo in range(0, len(pool), block):
@@ -277,8 +272,8 @@ def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: 
             for c in range(1, rows.shape[1]):
                 truth = truth & table[rows[:, c]]
             for k, base in enumerate(bases):
-                q = np.clip(np.add.reduceat((truth | base[None]) * weight, starts, axis=1), 0.0, 1.0)
-                gains[k, lo : lo + len(rows)] = model.nll_terms(ev.t[ni[starts]], q).sum(axis=-1)
+                q = ev.pair_prob(truth | base[None])
+                gains[k, lo : lo + len(rows)] = model.nll_terms(ev.t, q).sum(axis=-1)
     gains += costs[None, :]
     chosen: dict[Rule, None] = {r: None for r in around}
     per = max(1, size // len(contexts))

@@ -114,3 +114,35 @@ TABLE_WORLD: list[tuple[str, ...]] = [
     ("object", "add", "pen"),
     ("claim", "wallet", "alexis"),
 ]
+
+
+#: A world file of three blocks (one owned), two agents and the paper's trash norm, for the task commands.
+SMALL_WORLD = """
+name = "three blocks"
+agents = ["alexis", "xuan"]
+norms = ["forbid trash if ownedBy any"]
+
+[[areas]]
+name = "home"
+box = [-0.1, -0.1, 0.1, 0.1]
+
+[[areas]]
+name = "trash"
+box = [-0.3, 0.6, 0.2, 1.1]
+
+[[objects]]
+name = "wallet"
+color = "red"
+position = [0.5, 0.3, 0.0]
+owners = { alexis = 1.0 }
+
+[[objects]]
+name = "cup"
+color = "blue"
+position = [0.4, -0.4, 0.0]
+
+[[objects]]
+name = "can"
+color = "green"
+position = [-0.5, 0.2, 0.0]
+"""

@@ -6,37 +6,9 @@ from pathlib import Path
 
 import pytest
 
-from tests.cli.conftest import Ownctl
+from tests.cli.conftest import SMALL_WORLD, Ownctl
 
-WORLD = """
-name = "four blocks"
-agents = ["alexis", "xuan"]
-norms = ["forbid trash if ownedBy any"]
-
-[[areas]]
-name = "home"
-box = [-0.1, -0.1, 0.1, 0.1]
-
-[[areas]]
-name = "trash"
-box = [-0.3, 0.6, 0.2, 1.1]
-
-[[objects]]
-name = "wallet"
-color = "red"
-position = [0.5, 0.3, 0.0]
-owners = { alexis = 1.0 }
-
-[[objects]]
-name = "cup"
-color = "blue"
-position = [0.4, -0.4, 0.0]
-
-[[objects]]
-name = "can"
-color = "green"
-position = [-0.5, 0.2, 0.0]
-
+WORLD = SMALL_WORLD.replace('name = "three blocks"', 'name = "four blocks"') + """
 [[objects]]
 name = "key"
 color = "red"

@@ -7,37 +7,7 @@ from pathlib import Path
 
 import pytest
 
-from tests.cli.conftest import Ownctl
-
-SMALL_WORLD = """
-name = "three blocks"
-agents = ["alexis", "xuan"]
-norms = ["forbid trash if ownedBy any"]
-
-[[areas]]
-name = "home"
-box = [-0.1, -0.1, 0.1, 0.1]
-
-[[areas]]
-name = "trash"
-box = [-0.3, 0.6, 0.2, 1.1]
-
-[[objects]]
-name = "wallet"
-color = "red"
-position = [0.5, 0.3, 0.0]
-owners = { alexis = 1.0 }
-
-[[objects]]
-name = "cup"
-color = "blue"
-position = [0.4, -0.4, 0.0]
-
-[[objects]]
-name = "can"
-color = "green"
-position = [-0.5, 0.2, 0.0]
-"""
+from tests.cli.conftest import SMALL_WORLD, Ownctl
 
 
 def without_timing(report: dict) -> dict:
