@@ -141,12 +141,9 @@ class RuleSpace:
     max_rules: int = MAX_RULES
     given: tuple[Rule, ...] = ()
 
-    def sets(self) -> list[tuple[int, ...]]:
-        """Every set as pool indices, by size then in lexicographic order."""
-        return [tuple(int(x) for x in row if x >= 0) for row in self.padded()]
-
     def padded(self) -> np.ndarray:
-        """:meth:`sets` as a (K, max_rules) array of pool indices, -1 padding (read-only)."""
+        """Every set as a row of pool indices, -1 padding, by size then in lexicographic order
+        (a read-only (K, max_rules) array)."""
         return _sets(self.pool, self.max_rules)
 
 

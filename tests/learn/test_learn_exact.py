@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import functools
 import itertools
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -64,10 +65,10 @@ def evidence_of(rows) -> Evidence:
     return Evidence(frame, [r[4] for r in rows])
 
 
-def _best_rule_case(rows, base_size: int) -> None:
+def _best_rule_case(rows, base_size: int, negation_cost: float = 0.0) -> None:
     ev = evidence_of(rows)
     atoms = tuple(VOCAB.atoms())
-    model = model_for(atoms, 2)
+    model = replace(model_for(atoms, 2), negation_cost=negation_cost)
     base = [Rule("trash", (atoms[2],))][:base_size]  # "ownedBy a1" as a rule already there
     found = exact.best_rule(ev, "trash", base, atoms, model, 2, accept=np.inf)
     start = exact.objective(model, ev, base)
@@ -88,6 +89,12 @@ def _best_rule_case(rows, base_size: int) -> None:
 @given(examples, st.integers(0, 1))
 def test_best_rule_is_the_brute_force_optimum(rows, base_size: int) -> None:
     _best_rule_case(rows, base_size)
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(examples, st.integers(0, 1))
+def test_with_a_charge_per_negation_best_rule_is_still_the_brute_force_optimum(rows, base_size: int) -> None:
+    _best_rule_case(rows, base_size, negation_cost=0.7)
 
 
 @pytest.mark.slow
