@@ -7,6 +7,10 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+#: How learned rules decide a step: on the most probable rule set, or marginalised over the
+#: posterior over rule sets (docs/learning.md).
+DECIDE_RULES = ("map", "posterior")
+
 
 @dataclass(frozen=True)
 class LearnConfig:
@@ -57,7 +61,7 @@ class Settings:
     learn: LearnConfig = field(default_factory=LearnConfig)
     predict: PredictConfig = field(default_factory=PredictConfig)
     infer: InferConfig = field(default_factory=InferConfig)
-    decide_rules: str = "map"  # decisions on the most probable rule set, or marginalised ("posterior")
+    decide_rules: str = "map"  # one of DECIDE_RULES
 
     def threshold_for(self, action: str) -> float:
         """The obedience threshold of ``action`` (per-action override, else the default)."""

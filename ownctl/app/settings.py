@@ -14,14 +14,13 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ownctl.config import LearnConfig, Settings
+from ownctl.config import DECIDE_RULES, LearnConfig, Settings
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.vocab import ACTIONS
 
 FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.prediction")
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
 LEARNERS = ("ours", "paper")
-DECIDE_RULES = ("map", "posterior")
 KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", "ask.min_gain")
 ASK_MIN_GAIN = 0.05  # the default of ask.min_gain (ownctl.experiment.asking.DEFAULT_MIN_GAIN)
 DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,

@@ -18,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from ownctl.config import DECIDE_RULES
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.cluster import executor
 from ownctl.experiment.norms import WorldFactory
@@ -30,7 +31,6 @@ Progress = Callable[[int, int], None]  # (trials done, trials in total)
 CHUNKS_PER_JOB = 6
 
 LEARNERS = ("ours", "paper")
-DECISIONS = ("map", "posterior")  # decide.rules: the most probable rule set, or marginalised
 
 
 @dataclass(frozen=True)
@@ -146,8 +146,8 @@ def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None =
         raise BadValue(f"--jobs {jobs} and --scheduler {scheduler} are alternatives: give one of them")
     if scheduler is not None and not scheduler.strip():
         raise BadValue("--scheduler needs an address such as tcp://host:8786")
-    if decide not in DECISIONS:
-        raise UnknownName("decision mode", decide, DECISIONS)
+    if decide not in DECIDE_RULES:
+        raise UnknownName("decision mode", decide, DECIDE_RULES)
 
 
 def run_trials(name: str, factories: Sequence[WorldFactory], learner: str, seed: int, units: Sequence[Unit],
