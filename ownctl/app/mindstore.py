@@ -8,11 +8,12 @@ Mind with what was loaded (or last saved) and writes only the differences, belie
 what was saved gives the same Mind back, bit for bit, so a store behaves exactly like a Mind kept in
 memory (tested).
 
-Stored forms: an ownership row holds the claim (with speaker, trust, time), the prior (the
-prediction, with its source: ``prediction`` or ``base-rate``) and the posterior (only for objects
-that carry permissions while inference is on; elsewhere the prior stands). A permission holds its
-arrival rank and the object's percepts when it was given. A rule row holds its text, origin
-(given, learned, allow), provenance and rank.
+Stored forms: an ownership row holds the claim (with speaker, trust, time) and the posterior (only
+for objects that carry permissions while inference is on; elsewhere the prior stands), and exists
+only where one of them is held; the priors (the prediction, with its source: ``prediction`` or
+``base-rate``) are packed per agent in chunks of object ids (``ownctl/store/priors.py``). A
+permission holds its arrival rank and the object's percepts when it was given. A rule row holds its
+text, origin (given, learned, allow), provenance and rank.
 """
 
 from __future__ import annotations
@@ -94,14 +95,6 @@ class _Base:
     rules: dict[str, list[tuple[str, str, Any]]]
     switches: dict[str, bool]
     layout: int  # the Mind's layout when this was taken (same layout: same objects and agents)
-
-
-#: The belief columns each kind of belief writes, in this order.
-KIND_COLUMNS = {
-    "claim": ("claim_p", "claim_speaker", "claim_trust", "claim_time"),
-    "prior": ("prior_p", "prior_source", "prior_time"),
-    "posterior": ("posterior_p", "posterior_source", "posterior_time"),
-}
 
 
 def _rules_state(mind: Mind) -> dict[str, list[tuple[str, str, Any]]]:
@@ -193,9 +186,9 @@ class Stored:
         same = layout == base.layout and mind.agents == base.agents
         self._save_agents(tx, base)
         self._save_areas(tx, base)
-        fresh = self._save_objects(tx, base, respecified if same else None)
+        self._save_objects(tx, base, respecified if same else None)
         post = _stored_posterior(mind)
-        self._save_beliefs(tx, base, post, edited if same else None, fresh)
+        self._save_beliefs(tx, base, post, edited if same else None)
         self._save_permissions(tx, base)
         rules = _rules_state(mind)
         for action in ACTIONS:
@@ -228,9 +221,9 @@ class Stored:
             if area not in base.areas:
                 tx.world.add_area(area.name, area.box)
 
-    def _save_objects(self, tx: Tx, base: _Base, respecified: frozenset[str] | None) -> set[str]:
+    def _save_objects(self, tx: Tx, base: _Base, respecified: frozenset[str] | None) -> None:
         """Write added, removed and changed objects (only ``respecified`` ones can have changed,
-        unless None); returns the names of the added ones (their belief rows are not written yet)."""
+        unless None); their beliefs are written after."""
         mind = self.mind
         if respecified is None:
             current = {o.name for o in mind.objects}
@@ -242,7 +235,7 @@ class Stored:
         else:
             added, changed = [], [mind.objects[mind.index[n]] for n in sorted(respecified)]
         if added:
-            ids = tx.things.add_objects([self._row(o) for o in added], mind.now, beliefs=False)
+            ids = tx.things.add_objects([self._row(o) for o in added], mind.now)
             self.ids.update(ids)
             tx.things.add_categories([(ids[o.name], c) for o in added for c in o.categories])
             tx.things.add_touches([(ids[o.name], self.agent_ids[a], t)
@@ -259,7 +252,6 @@ class Stored:
             for agent, t in spec.last_touch.items():
                 if old.last_touch.get(agent) != t:
                     tx.things.touch(oid, self.agent_ids[agent], t)
-        return {o.name for o in added}
 
     @staticmethod
     def _row(spec: ObjectSpec) -> dict[str, Any]:
@@ -336,66 +328,63 @@ class Stored:
             cells["claim"] = np.union1d(cells["claim"], np.array(moved, dtype=int))
         return cells
 
-    def _save_beliefs(self, tx: Tx, base: _Base, post: dict[str, np.ndarray], edited: frozenset[str] | None,
-                      fresh: set[str]) -> None:
-        """Write the claims, priors and posteriors that differ from the baseline, in bulk: one
-        statement per set of columns; the belief rows of ``fresh`` objects are inserted whole."""
+    def _save_beliefs(self, tx: Tx, base: _Base, post: dict[str, np.ndarray],
+                      edited: frozenset[str] | None) -> None:
+        """Write the claims, priors and posteriors that differ from the baseline, in bulk: priors
+        chunk by chunk, claims and posteriors with one upsert per set of columns."""
         mind = self.mind
         m = len(mind.agents)
         cells = self._changed_cells(base, post, edited)
-        flat = np.zeros(len(mind.objects) * m, dtype=np.int8)  # per cell: which kinds changed (bits)
-        for bit, kind in enumerate(KIND_COLUMNS):
-            flat[cells[kind]] |= np.int8(1 << bit)
-        new_row = np.zeros(len(mind.objects), dtype=bool)
-        new_row[[mind.index[name] for name in fresh]] = True
-        flat[np.repeat(new_row, m)] |= np.int8(8)  # every (fresh object, agent) pair gets its row
-        every = np.flatnonzero(flat)
-        if not len(every):
-            return
-        code, inserted = flat[every] & 7, new_row[every // m]
         row_ids = self._ids_of_rows()
         agent_ids = np.array([self.agent_ids[a] for a in mind.agents], dtype=np.int64)
+        pick = cells["prior"]
+        if len(pick):
+            i, j = pick // m, pick % m
+            tx.beliefs.write_priors(row_ids[i], agent_ids[j], mind.predicted[i, j], mind.prior_source[i, j],
+                                    mind.now)
+        flat = np.zeros(len(mind.objects) * m, dtype=np.int8)  # per cell: which kinds changed (bits)
+        flat[cells["claim"]] |= np.int8(1)
+        flat[cells["posterior"]] |= np.int8(2)
+        every = np.flatnonzero(flat)
+        code = flat[every]
         for c in np.unique(code):
-            for insert in (False, True):
-                pick = every[(code == c) & (inserted == insert)]
-                if not len(pick):
-                    continue
-                # a new row gets every column (NULL where nothing is held)
-                kinds = list(KIND_COLUMNS) if insert else [k for b, k in enumerate(KIND_COLUMNS)
-                                                           if c >> b & 1]
-                i, j = pick // m, pick % m
-                values = self._cell_values(kinds, i, j, post)
-                objects, agents = row_ids[i].tolist(), agent_ids[j].tolist()
-                if insert:
-                    tx.beliefs.insert_beliefs(objects, agents, values)
-                else:
-                    tx.beliefs.update_beliefs(objects, agents, values)
+            pick = every[code == c]
+            kinds = [k for b, k in enumerate(("claim", "posterior")) if c >> b & 1]
+            i, j = pick // m, pick % m
+            tx.beliefs.update_beliefs(row_ids[i].tolist(), agent_ids[j].tolist(),
+                                      self._cell_values(kinds, i, j, post))
 
     def _cell_values(self, kinds: list[str], i: np.ndarray, j: np.ndarray,
                      post: dict[str, np.ndarray]) -> dict[str, list[Any]]:
         """column -> stored value for each cell (i[k], j[k]), for the columns of ``kinds``."""
         mind, now = self.mind, self.mind.now
-        rows, cols = i.tolist(), j.tolist()
+        count = len(i)
         values: dict[str, list[Any]] = {}
         if "claim" in kinds:
-            claim = mind.claims[i, j].tolist()
-            metas = [mind.claim_info.get((mind.objects[a].name, mind.agents[b])) or ClaimInfo()
-                     if not np.isnan(p) else None for a, b, p in zip(rows, cols, claim, strict=True)]
-            values["claim_p"] = [None if g is None else float(p) for p, g in zip(claim, metas, strict=True)]
-            values["claim_speaker"] = [None if g is None else g.speaker for g in metas]
-            values["claim_trust"] = [None if g is None else g.trust for g in metas]
-            values["claim_time"] = [None if g is None else g.time for g in metas]
+            claim = mind.claims[i, j]
+            p_of: list[Any] = [None] * count
+            speaker: list[Any] = [None] * count
+            trust: list[Any] = [None] * count
+            time: list[Any] = [None] * count
+            for k in np.flatnonzero(~np.isnan(claim)).tolist():  # only the cells that hold a claim
+                a, b = int(i[k]), int(j[k])
+                meta = mind.claim_info.get((mind.objects[a].name, mind.agents[b])) or ClaimInfo()
+                p_of[k], speaker[k], trust[k], time[k] = float(claim[k]), meta.speaker, meta.trust, meta.time
+            values.update(claim_p=p_of, claim_speaker=speaker, claim_trust=trust, claim_time=time)
         if "prior" in kinds:
             values["prior_p"] = mind.predicted[i, j].tolist()
             values["prior_source"] = mind.prior_source[i, j].tolist()  # str already
-            values["prior_time"] = [now] * len(rows)
+            values["prior_time"] = [now] * count
         if "posterior" in kinds:
+            held: list[Any] = [None] * count
+            stamp: list[Any] = [None] * count
+            source: list[Any] = [None] * count
             by_row = {mind.index[name]: row for name, row in post.items()}
-            held = [None if a not in by_row or np.isnan(by_row[a][b]) else float(by_row[a][b])
-                    for a, b in zip(rows, cols, strict=True)]
-            values["posterior_p"] = held
-            values["posterior_source"] = [None if p is None else "inference" for p in held]
-            values["posterior_time"] = [None if p is None else now for p in held]
+            for k in np.flatnonzero(np.isin(i, list(by_row))).tolist():  # only objects with posteriors
+                p = by_row[int(i[k])][int(j[k])]
+                if not np.isnan(p):
+                    held[k], source[k], stamp[k] = float(p), "inference", now
+            values.update(posterior_p=held, posterior_source=source, posterior_time=stamp)
         return values
 
     def _save_permissions(self, tx: Tx, base: _Base) -> None:
@@ -452,31 +441,40 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     column = {a.id: j for j, a in enumerate(known)}
     stored_post = np.full(mind.claims.shape, np.nan)
     prior = np.full(mind.claims.shape, np.nan)
+    source = np.full(mind.claims.shape, None, dtype=object)
+    object_ids = [r.id for r in rows]
     writable = None
     if focus is None:
-        beliefs = tx.beliefs.belief_table(ids)
+        beliefs = tx.beliefs.held(ids)
+        priors = tx.beliefs.priors(object_ids, [a.id for a in known])
+        prior[:], source[:] = priors.p, priors.source
     else:
         carrying = sorted({p.object_id for p in tx.knowledge.permission_table()})
         seen_pairs = set()
         beliefs = []
-        for b in [*tx.beliefs.belief_table(agent_ids=focus), *tx.beliefs.belief_table(carrying)]:
+        for b in [*tx.beliefs.held(agent_ids=focus), *tx.beliefs.held(carrying)]:
             if (b.object_id, b.agent_id) not in seen_pairs:
                 seen_pairs.add((b.object_id, b.agent_id))
                 beliefs.append(b)
+        cols = [column[a] for a in focus]
+        some = tx.beliefs.priors(object_ids, focus)
+        prior[:, cols], source[:, cols] = some.p, some.source
+        at = [index[o] for o in carrying]
+        some = tx.beliefs.priors(carrying, [a.id for a in known])
+        prior[at], source[at] = some.p, some.source
         writable = np.zeros(mind.claims.shape, dtype=bool)
-        writable[:, [column[a] for a in focus]] = True
-        writable[[index[o] for o in carrying], :] = True
+        writable[:, cols] = True
+        writable[at, :] = True
+    has_prior = ~np.isnan(prior)
+    mind.predicted[has_prior] = prior[has_prior]
+    mind.prior_source[has_prior] = source[has_prior]
     if beliefs:
         bi = np.array([index[b.object_id] for b in beliefs], dtype=int)
         bj = np.array([column[b.agent_id] for b in beliefs], dtype=int)
-        claim = np.array([b.claim_p for b in beliefs], dtype=float)
+        claim = np.array([np.nan if b.claim_p is None else b.claim_p for b in beliefs], dtype=float)
         mind.claims[bi, bj] = claim
-        prior[bi, bj] = np.array([b.prior_p for b in beliefs], dtype=float)
-        stored_post[bi, bj] = np.array([b.posterior_p for b in beliefs], dtype=float)
-        has_prior = ~np.isnan(prior[bi, bj])
-        mind.predicted[bi[has_prior], bj[has_prior]] = prior[bi[has_prior], bj[has_prior]]
-        source = np.array([b.prior_source or "prediction" for b in beliefs], dtype=object)
-        mind.prior_source[bi[has_prior], bj[has_prior]] = source[has_prior]
+        stored_post[bi, bj] = np.array([np.nan if b.posterior_p is None else b.posterior_p for b in beliefs],
+                                       dtype=float)
         for k in np.flatnonzero(~np.isnan(claim)):
             b = beliefs[k]
             mind.claim_info[(specs[bi[k]].name, names[b.agent_id])] = ClaimInfo(

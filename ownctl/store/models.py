@@ -17,6 +17,7 @@ from sqlalchemy import (
     ForeignKey,
     Index,
     Integer,
+    LargeBinary,
     MetaData,
     PrimaryKeyConstraint,
     String,
@@ -109,12 +110,12 @@ class Area(Base):
 
 
 class Ownership(Base):
-    """Beliefs about ``ownedBy(object, agent)``: the claim, the prior and the posterior, each nullable.
+    """Claims and posteriors about ``ownedBy(object, agent)``, each nullable.
 
-    One row exists for every (object, agent) pair (created with the object or the agent), so beliefs
-    for many objects are written with one bulk UPDATE by primary key. The key is (agent, object):
-    an agent's rows lie together (on SQLite the table is stored by its key), so refitting one agent's
-    predictor rewrites a compact range; lookups by object use the object_id index.
+    Rows exist only for the pairs that hold a claim or a posterior (written with one bulk upsert per
+    set of columns); a pair without a row holds neither. Priors, held for every pair, are packed per
+    agent in :class:`Prior`. The key is (agent, object), so an agent's rows lie together (on SQLite
+    the table is stored by its key); lookups by object use the object_id index.
     """
 
     __tablename__ = "ownership"
@@ -129,12 +130,23 @@ class Ownership(Base):
     claim_speaker: Mapped[str | None] = mapped_column(String(NAME))
     claim_trust: Mapped[float | None] = mapped_column(Float)
     claim_time: Mapped[float | None] = mapped_column(Float)
-    prior_p: Mapped[float | None] = mapped_column(Float)
-    prior_source: Mapped[str | None] = mapped_column(String(32))
-    prior_time: Mapped[float | None] = mapped_column(Float)
     posterior_p: Mapped[float | None] = mapped_column(Float)
     posterior_source: Mapped[str | None] = mapped_column(String(32))
     posterior_time: Mapped[float | None] = mapped_column(Float)
+
+
+class Prior(Base):
+    """The predicted priors of one agent about a chunk of object ids (``ownctl/store/priors.py``):
+    probabilities (float64, NaN where none is held) and source codes, packed, and the chunk's last
+    write time."""
+
+    __tablename__ = "priors"
+    __table_args__ = ({"sqlite_with_rowid": False},)
+    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
+    chunk: Mapped[int] = mapped_column(Integer, primary_key=True)
+    p: Mapped[bytes] = mapped_column(LargeBinary)
+    source: Mapped[bytes] = mapped_column(LargeBinary)
+    time: Mapped[float] = mapped_column(Float)
 
 
 class Generation(Base):

@@ -2,7 +2,8 @@
 
 :class:`Tx` wraps a SQLAlchemy session; the app layer never sees SQL. Lookups by name raise
 :class:`UnknownName` listing the known names; adding a taken name raises :class:`DuplicateName`.
-Beliefs about many (object, agent) pairs are written with one bulk UPDATE by primary key.
+Claims and posteriors about many (object, agent) pairs are written with one bulk upsert by primary
+key; priors are packed per agent in chunks of object ids (``ownctl/store/priors.py``).
 """
 
 from __future__ import annotations
@@ -13,10 +14,12 @@ from dataclasses import dataclass
 from itertools import islice
 from typing import Any, cast
 
+import numpy as np
 from sqlalchemy import Table, delete, func, insert, select, update
 from sqlalchemy.orm import Session
 
 from ownctl.errors import DuplicateName, StoreError, UnknownName
+from ownctl.store import priors as packing
 from ownctl.store.models import (
     Agent,
     Area,
@@ -28,6 +31,7 @@ from ownctl.store.models import (
     Object,
     Ownership,
     Permission,
+    Prior,
     RuleRow,
     Setting,
     Touch,
@@ -75,26 +79,26 @@ def bulk_insert(session: Session, table: str, columns: Sequence[str], rows: Iter
         conn.exec_driver_sql(statement, batch)
 
 
-def bulk_update(session: Session, table: str, keys: Sequence[str], columns: Sequence[str],
+def bulk_upsert(session: Session, table: str, keys: Sequence[str], columns: Sequence[str],
                 values: Mapping[str, Sequence[Any]]) -> None:
-    """``UPDATE table SET columns... WHERE keys...`` for many rows with one statement: an
-    executemany on SQLite, one ``UPDATE ... FROM unnest(arrays)`` on PostgreSQL. ``values`` maps
-    every key and column to a list, one entry per row."""
-    if not columns or not values[keys[0]]:
+    """Insert or update many rows with one statement: ``INSERT ... ON CONFLICT (keys) DO UPDATE``,
+    an executemany on SQLite and one ``INSERT ... SELECT FROM unnest(arrays)`` on PostgreSQL.
+    ``values`` maps every key and column to a list, one entry per row."""
+    if not values[keys[0]]:
         return
     conn = session.connection()
+    names = [*keys, *columns]
+    sets = ", ".join(f"{c} = excluded.{c}" for c in columns)
+    conflict = f"ON CONFLICT ({', '.join(keys)}) " + (f"DO UPDATE SET {sets}" if columns else "DO NOTHING")
     if conn.dialect.name == "postgresql":
-        names = [*keys, *columns]
         arrays = ", ".join(f"%(a{k})s::{_pg_array_type(c)}" for k, c in enumerate(names))
-        sets = ", ".join(f"{c} = v.{c}" for c in columns)
-        match = " AND ".join(f"t.{k} = v.{k}" for k in keys)
-        sql = f"UPDATE {table} AS t SET {sets} FROM unnest({arrays}) AS v({', '.join(names)}) WHERE {match}"
+        sql = (f"INSERT INTO {table} ({', '.join(names)}) SELECT * FROM unnest({arrays}) "
+               f"AS v({', '.join(names)}) {conflict}")
         conn.exec_driver_sql(sql, {f"a{k}": list(values[c]) for k, c in enumerate(names)})
         return
-    sets = ", ".join(f"{c} = ?" for c in columns)
-    match = " AND ".join(f"{k} = ?" for k in keys)
-    rows = list(zip(*(values[c] for c in columns), *(values[k] for k in keys), strict=True))
-    conn.exec_driver_sql(f"UPDATE {table} SET {sets} WHERE {match}", rows)
+    marks = ", ".join("?" for _ in names)
+    rows = list(zip(*(values[c] for c in names), strict=True))
+    conn.exec_driver_sql(f"INSERT INTO {table} ({', '.join(names)}) VALUES ({marks}) {conflict}", rows)
 
 
 @dataclass(frozen=True)
@@ -139,15 +143,12 @@ class World(_Part):
         return row
 
     def add_agent(self, name: str, now: float) -> Agent:
-        """A new agent, with an empty ownership row for every object."""
+        """A new agent (it holds no beliefs yet)."""
         self._unique(Agent, name, "agent")
         self.tx._agents = None
         row = Agent(name=name, created=now)
         self.session.add(row)
         self.session.flush()
-        ids = list(self.session.scalars(select(Object.id).order_by(Object.id)))
-        if ids:
-            bulk_insert(self.session, "ownership", ("agent_id", "object_id"), ((row.id, o) for o in ids))
         return row
 
     def remove(self, row: Base) -> None:
@@ -219,11 +220,9 @@ class Things(_Part):
         rank = {oid: k for k, oid in enumerate(ids)}
         return sorted(out, key=lambda r: rank[r.id])
 
-    def add_objects(self, specs: Sequence[dict[str, Any]], now: float,
-                    beliefs: bool = True) -> dict[str, int]:
-        """Many new objects at once (dicts of name, color, x, y, z), each with an (empty) ownership row
-        per agent unless ``beliefs`` is false (the caller inserts them, see Beliefs.insert_beliefs);
-        returns name -> id. Duplicate names (among them or with stored objects) are refused."""
+    def add_objects(self, specs: Sequence[dict[str, Any]], now: float) -> dict[str, int]:
+        """Many new objects at once (dicts of name, color, x, y, z), holding no beliefs yet; returns
+        name -> id. Duplicate names (among them or with stored objects) are refused."""
         names = [s["name"] for s in specs]
         taken = sorted(self._object_ids(names)) or sorted(n for n, k in Counter(names).items() if k > 1)
         if taken:
@@ -233,12 +232,7 @@ class Things(_Part):
         keys = ("name", "color", "x", "y", "z")
         rows = [{**{k: s.get(k) for k in keys}, "extra": s.get("extra") or {}, "created": now} for s in specs]
         self.session.connection().execute(insert(_table(Object)), rows)
-        ids = self._object_ids(names)
-        agents = list(self.session.scalars(select(Agent.id).order_by(Agent.id)))
-        if agents and beliefs:
-            bulk_insert(self.session, "ownership", ("agent_id", "object_id"),
-                        ((a, ids[n]) for a in agents for n in names))
-        return ids
+        return self._object_ids(names)
 
     def _object_ids(self, names: Sequence[str]) -> dict[str, int]:
         """name -> id of the stored objects among ``names`` (many names: one scan of the table)."""
@@ -255,6 +249,7 @@ class Things(_Part):
     def remove_objects(self, object_ids: Sequence[int]) -> None:
         """Forget objects (their beliefs, touches, categories and permissions cascade)."""
         ids = list(object_ids)
+        self.tx.beliefs.clear_priors(ids)
         for start in range(0, len(ids), CHUNK):
             chunk = ids[start : start + CHUNK]
             for table in (Ownership, Touch, Category, Permission, TruthOwner):
@@ -355,30 +350,49 @@ class Things(_Part):
             bulk_insert(self.session, "touches", ("object_id", "agent_id", "time"), rows)
 
 
+#: The ownership columns of each kind of belief a row holds, and the prior's (packed in ``priors``).
+CLAIM_COLUMNS = ("claim_p", "claim_speaker", "claim_trust", "claim_time")
+POSTERIOR_COLUMNS = ("posterior_p", "posterior_source", "posterior_time")
+PRIOR_COLUMNS = ("prior_p", "prior_source", "prior_time")
+HELD_COLUMNS = (*CLAIM_COLUMNS, *POSTERIOR_COLUMNS)
+
+
+@dataclass(frozen=True)
+class BeliefRow:
+    """One (object, agent) pair's beliefs as the store holds them: None where nothing is held."""
+
+    object_id: int
+    agent_id: int
+    claim_p: float | None = None
+    claim_speaker: str | None = None
+    claim_trust: float | None = None
+    claim_time: float | None = None
+    prior_p: float | None = None
+    prior_source: str | None = None
+    prior_time: float | None = None
+    posterior_p: float | None = None
+    posterior_source: str | None = None
+    posterior_time: float | None = None
+
+
+@dataclass(frozen=True)
+class PriorTable:
+    """Priors of objects (rows) x agents (columns): probability (NaN: none), source (None: none)
+    and the time its chunk was last written (NaN: none)."""
+
+    p: np.ndarray
+    source: np.ndarray
+    time: np.ndarray
+
+
 class Beliefs(_Part):
-    """Ownership beliefs: claims, priors and posteriors, one row per (object, agent)."""
+    """Ownership beliefs: claims and posteriors (rows where held) and priors (packed per agent)."""
 
-    def ownership(self, object_id: int | None = None, agent_id: int | None = None) -> list[Ownership]:
-        """Ownership rows, optionally for one object and/or one agent."""
-        query = select(Ownership)
-        if object_id is not None:
-            query = query.where(Ownership.object_id == object_id)
-        if agent_id is not None:
-            query = query.where(Ownership.agent_id == agent_id)
-        return list(self.session.scalars(query.order_by(Ownership.object_id, Ownership.agent_id)))
-
-    def belief_table(
-        self, object_ids: Sequence[int] | None = None, agent_id: int | None = None,
-        agent_ids: Sequence[int] | None = None,
-    ) -> list[Any]:
-        """Ownership beliefs as plain rows (attribute access by column name), without ORM objects.
-
-        The fast path for reading many beliefs at once: optionally only ``object_ids`` and/or one
-        agent (or only ``agent_ids``).
-        """
+    def held(self, object_ids: Sequence[int] | None = None,
+             agent_ids: Sequence[int] | None = None) -> list[Any]:
+        """The stored claim and posterior rows as plain rows (object_id, agent_id, claim_*,
+        posterior_*), optionally only of some objects and/or agents."""
         query = select(*_table(Ownership).columns)
-        if agent_id is not None:
-            query = query.where(Ownership.agent_id == agent_id)
         if agent_ids is not None:
             query = query.where(Ownership.agent_id.in_(list(agent_ids)))
         if object_ids is None:
@@ -386,15 +400,127 @@ class Beliefs(_Part):
         out: list[Any] = []
         ids = list(object_ids)
         for start in range(0, len(ids), CHUNK):
-            chunk = query.where(Ownership.object_id.in_(ids[start : start + CHUNK]))
-            out.extend(self.session.execute(chunk).all())
+            part = query.where(Ownership.object_id.in_(ids[start : start + CHUNK]))
+            out.extend(self.session.execute(part).all())
         return out
 
-    def write_beliefs(self, rows: Sequence[dict[str, Any]]) -> None:
-        """Bulk UPDATE of ownership rows; each dict has object_id, agent_id and the columns to set.
+    def claim_counts(self) -> dict[int, int]:
+        """agent id -> how many objects carry a claim about it."""
+        query = (select(Ownership.agent_id, func.count()).where(Ownership.claim_p.is_not(None))
+                 .group_by(Ownership.agent_id))
+        return {int(a): int(n) for a, n in self.session.execute(query).all()}
 
-        One statement per set of columns (:meth:`update_beliefs`).
-        """
+    def priors(self, object_ids: Sequence[int], agent_ids: Sequence[int]) -> PriorTable:
+        """The priors of ``object_ids`` x ``agent_ids``, read chunk by chunk (``ownctl/store/priors.py``)."""
+        objs = np.asarray(object_ids, dtype=np.int64)
+        n, m = len(objs), len(agent_ids)
+        out = PriorTable(np.full((n, m), np.nan), np.full((n, m), None, dtype=object),
+                         np.full((n, m), np.nan))
+        if not n or not m:
+            return out
+        chunk, slot = packing.chunk_of(objs)
+        column = {int(a): j for j, a in enumerate(agent_ids)}
+        wanted = np.unique(chunk).tolist()
+        by_chunk = {c: np.flatnonzero(chunk == c) for c in wanted}
+        query = select(Prior.agent_id, Prior.chunk, Prior.p, Prior.source, Prior.time).where(
+            Prior.agent_id.in_(list(column)))
+        if len(wanted) < CHUNK:
+            query = query.where(Prior.chunk.in_(wanted))
+        for agent, c, p, source, time in self.session.execute(query):
+            rows = by_chunk.get(int(c))
+            if rows is None:
+                continue
+            values, codes = packing.decode(p, source)
+            j = column[int(agent)]
+            here = slot[rows]
+            out.p[rows, j] = values[here]
+            held = codes[here] > 0
+            out.source[rows, j] = packing.source_names(codes[here])
+            out.time[rows[held], j] = time
+        return out
+
+    def write_priors(self, object_ids: Sequence[int] | np.ndarray, agent_ids: Sequence[int] | np.ndarray,
+                     p: Sequence[float | None] | np.ndarray, source: Sequence[str | None] | np.ndarray,
+                     time: float) -> None:
+        """Set the priors of the pairs (object_ids[k], agent_ids[k]) (None or NaN: none held),
+        rewriting each touched chunk once; the chunks' write time becomes ``time``."""
+        if not len(object_ids):
+            return
+        objs = np.asarray(object_ids, dtype=np.int64)
+        agents = np.asarray(agent_ids, dtype=np.int64)
+        values = np.asarray([np.nan if v is None else v for v in p] if not isinstance(p, np.ndarray) else p,
+                            dtype=float)
+        codes = packing.source_codes(source)
+        none = np.isnan(values)
+        codes[none] = 0
+        codes[(codes == 0) & ~none] = packing.SOURCES.index("prediction")  # a prior of unnamed source
+        chunk, slot = packing.chunk_of(objs)
+        key = agents * (int(chunk.max()) + 1) + chunk  # one integer per (agent, chunk)
+        order = np.argsort(key, kind="stable")
+        bounds = np.flatnonzero(np.diff(key[order])) + 1
+        parts = np.split(order, bounds)
+        keys = [(int(agents[part[0]]), int(chunk[part[0]])) for part in parts]
+        stored: dict[tuple[int, int], tuple[np.ndarray, np.ndarray]] = {}
+        query = select(Prior.agent_id, Prior.chunk, Prior.p, Prior.source).where(
+            Prior.agent_id.in_(sorted({a for a, _ in keys})), Prior.chunk.in_(sorted({c for _, c in keys})))
+        for agent, c, pb, sb in self.session.execute(query):
+            stored[(int(agent), int(c))] = packing.decode(pb, sb)
+        rows: list[tuple[int, int, bytes, bytes, float]] = []
+        for k, part in zip(keys, parts, strict=True):
+            have, code = stored.get(k) or packing.empty()
+            have[slot[part]] = values[part]
+            code[slot[part]] = codes[part]
+            rows.append((*k, *packing.encode(have, code), time))
+        old = [{"a": a, "c": c} for a, c in keys if (a, c) in stored]
+        if old:
+            conn = self.session.connection()
+            mark = "%({})s" if conn.dialect.name == "postgresql" else ":{}"
+            conn.exec_driver_sql(f"DELETE FROM priors WHERE agent_id = {mark.format('a')} "
+                                 f"AND chunk = {mark.format('c')}", old)
+        bulk_insert(self.session, "priors", ("agent_id", "chunk", "p", "source", "time"), rows)
+        self._expire(Prior)
+
+    def clear_priors(self, object_ids: Sequence[int]) -> None:
+        """Forget every agent's priors about ``object_ids`` (objects being removed: ids are reused)."""
+        agents = [a.id for a in self.tx.world.agents()]
+        ids = list(object_ids)
+        if ids and agents:
+            self.write_priors([o for o in ids for _ in agents], agents * len(ids),
+                              [None] * (len(ids) * len(agents)), [None] * (len(ids) * len(agents)), 0.0)
+
+    def belief_table(
+        self, object_ids: Sequence[int] | None = None, agent_id: int | None = None,
+        agent_ids: Sequence[int] | None = None,
+    ) -> list[BeliefRow]:
+        """Every (object, agent) pair's beliefs, by object id then agent id; optionally only
+        ``object_ids`` and/or one agent (or only ``agent_ids``)."""
+        if agent_id is not None:
+            agent_ids = [agent_id]
+        agents = sorted(a.id for a in self.tx.world.agents()) if agent_ids is None else sorted(set(agent_ids))
+        objects = (list(self.session.scalars(select(Object.id).order_by(Object.id))) if object_ids is None
+                   else sorted(set(object_ids)))
+        priors = self.priors(objects, agents)
+        held = {(r.object_id, r.agent_id): r for r in self.held(None if object_ids is None else objects,
+                                                                   None if agent_ids is None else agents)}
+        out: list[BeliefRow] = []
+        for i, oid in enumerate(objects):
+            for j, aid in enumerate(agents):
+                p = priors.p[i, j]
+                prior: dict[str, Any] = {} if np.isnan(p) else {
+                    "prior_p": float(p), "prior_source": priors.source[i, j],
+                    "prior_time": float(priors.time[i, j])}
+                row = held.get((oid, aid))
+                kept = {} if row is None else {c: getattr(row, c) for c in HELD_COLUMNS}
+                out.append(BeliefRow(oid, aid, **kept, **prior))
+        return out
+
+    def ownership(self, object_id: int | None = None, agent_id: int | None = None) -> list[BeliefRow]:
+        """Every (object, agent) pair's beliefs, optionally for one object and/or one agent."""
+        return self.belief_table(None if object_id is None else [object_id], agent_id)
+
+    def write_beliefs(self, rows: Sequence[dict[str, Any]]) -> None:
+        """Set beliefs of (object, agent) pairs; each dict has object_id, agent_id and the columns
+        to set. One statement per set of columns (:meth:`update_beliefs`)."""
         groups: dict[tuple[str, ...], list[dict[str, Any]]] = {}
         for row in rows:
             columns = tuple(sorted(k for k in row if k not in ("object_id", "agent_id")))
@@ -405,25 +531,24 @@ class Beliefs(_Part):
 
     def update_beliefs(self, object_ids: Sequence[int], agent_ids: Sequence[int],
                        values: Mapping[str, Sequence[Any]]) -> None:
-        """Set the columns in ``values`` (column -> one value per row) of the ownership rows
-        (object_ids[k], agent_ids[k]), with one bulk statement (:func:`bulk_update`)."""
+        """Set the columns in ``values`` (column -> one value per pair) of the pairs
+        (object_ids[k], agent_ids[k]): claim and posterior columns with one bulk upsert
+        (:func:`bulk_upsert`), prior columns by rewriting their chunks (:meth:`write_priors`)."""
         if not len(object_ids):
             return
-        columns = tuple(values)
-        bulk_update(self.session, "ownership", ("agent_id", "object_id"), columns,
-                    {"agent_id": agent_ids, "object_id": object_ids, **values})
-        self._expire(Ownership)
-
-    def insert_beliefs(self, object_ids: Sequence[int], agent_ids: Sequence[int],
-                       values: Mapping[str, Sequence[Any]]) -> None:
-        """New ownership rows (object_ids[k], agent_ids[k]) with the columns in ``values``, at once."""
-        if not len(object_ids):
-            return
-        columns = ("agent_id", "object_id", *values)
-        order = sorted(range(len(object_ids)), key=lambda k: (agent_ids[k], object_ids[k]))  # key order
-        data = [agent_ids, object_ids, *values.values()]
-        rows = zip(*([c[k] for k in order] for c in data), strict=True)
-        bulk_insert(self.session, "ownership", columns, rows)
+        unknown = sorted(set(values) - {*CLAIM_COLUMNS, *POSTERIOR_COLUMNS, *PRIOR_COLUMNS})
+        if unknown:
+            raise ValueError(f"unknown belief column {unknown[0]!r}; valid: "
+                             f"{', '.join((*CLAIM_COLUMNS, *PRIOR_COLUMNS, *POSTERIOR_COLUMNS))}")
+        if "prior_p" in values:
+            times = [t for t in values.get("prior_time", ()) if t is not None]
+            self.write_priors(object_ids, agent_ids, values["prior_p"],
+                              values.get("prior_source", [None] * len(object_ids)), max(times, default=0.0))
+        columns = tuple(c for c in values if c not in PRIOR_COLUMNS)
+        if columns:
+            bulk_upsert(self.session, "ownership", ("agent_id", "object_id"), columns,
+                        {"agent_id": agent_ids, "object_id": object_ids, **{c: values[c] for c in columns}})
+            self._expire(Ownership)
 
 
 class Knowledge(_Part):

@@ -68,6 +68,7 @@ def paper_blocks_world(
     centres[0], centres[home_cluster] = centres[home_cluster], centres[0]
     objects: list[ObjectSpec] = []
     owners: dict[str, dict[str, float]] = {}
+    names = np.array(agents, dtype=object)
     for i in range(n_objects):
         cluster = i % (k + 1)
         r = rng.uniform(0.0, CLUSTER_RADIUS)
@@ -75,9 +76,9 @@ def paper_blocks_world(
         x, y = centres[cluster] + r * np.array([np.cos(theta), np.sin(theta)])
         color = PAPER_COLORS[int(rng.integers(len(PAPER_COLORS)))]
         owner = agents[cluster - 1] if cluster > 0 else None
-        ages = {
-            a: float(rng.exponential(MEAN_AGE_OWNER if a == owner else MEAN_AGE_OTHER)) for a in agents
-        }
+        # one draw per agent, in agent order: exponential(scale) is scale * standard_exponential()
+        scales = np.where(names == owner, MEAN_AGE_OWNER, MEAN_AGE_OTHER)
+        ages = dict(zip(agents, (scales * rng.standard_exponential(k)).tolist(), strict=True))
         name = f"{prefix}{i + 1}"
         objects.append(ObjectSpec(name, color, (float(x), float(y), 0.0), frozenset({"block"}), ages))
         owners[name] = {owner: 1.0} if owner else {}

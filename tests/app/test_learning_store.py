@@ -86,13 +86,17 @@ def test_a_claim_writes_that_agents_prior_for_every_object(ctx: AppContext) -> N
     assert near > far  # o1 is next to the claimed o0
 
 
-def count_updates(ctx: AppContext) -> list[int]:
-    """Record how many UPDATEs of the ownership table each cursor execution sends."""
-    calls: list[int] = []
+def count_writes(ctx: AppContext) -> list[tuple[str, int]]:
+    """Record (table, rows) of each cursor execution that writes ownership or priors."""
+    calls: list[tuple[str, int]] = []
 
     def listen(conn: Any, cursor: Any, statement: str, parameters: Any, context: Any, many: bool) -> None:
-        if statement.lstrip().upper().startswith("UPDATE OWNERSHIP"):
-            calls.append(len(parameters) if many else 1)
+        words = statement.split()
+        verb = words[0].upper() if words else ""
+        table = words[2].lower() if verb in ("INSERT", "DELETE") and len(words) > 2 else (
+            words[1].lower() if verb == "UPDATE" and len(words) > 1 else "")
+        if table in ("ownership", "priors"):
+            calls.append((table, len(parameters) if many else 1))
 
     event.listen(ctx.store().engine, "before_cursor_execute", listen)
     return calls
@@ -101,11 +105,12 @@ def count_updates(ctx: AppContext) -> list[int]:
 @pytest.mark.parametrize("n", [5, 60])
 def test_priors_are_written_in_bulk(ctx: AppContext, n: int) -> None:
     small_world(ctx, n)
-    calls = count_updates(ctx)
+    calls = count_writes(ctx)
     instruct.add_claim(ctx, "o0", "alexis")
-    # the claim itself, the priors of every object in one executemany, posteriors cleared: O(1) statements
+    # the claim in one upsert; the agent's priors of every object rewritten as one packed chunk
     assert len(calls) <= 4, calls
-    assert sum(calls) == n  # one row per object: the claimed one with its claim, the others in one statement
+    assert sum(k for t, k in calls if t == "ownership") == 1, calls
+    assert [k for t, k in calls if t == "priors"] == [1, 1], calls  # the old chunk out, the new one in
 
 
 def test_exclusive_claim_repredicts_every_agent_it_touches(ctx: AppContext) -> None:

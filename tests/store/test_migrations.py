@@ -170,6 +170,44 @@ def test_the_generation_revision_keys_beliefs_by_agent_and_back(tmp_path: Path) 
     conn.close()
 
 
+def test_the_packed_priors_revision_moves_priors_into_chunks_and_back(tmp_path: Path) -> None:
+    import numpy as np
+
+    from ownctl.store import priors as packing
+
+    path = tmp_path / "p.db"
+    cfg = alembic_config(url=f"sqlite:///{path}")
+    command.upgrade(cfg, known_revisions()[0])
+    with sqlite3.connect(path) as conn:
+        for statement in FIRST_REVISION_DATA:
+            conn.execute(statement)
+    conn.close()
+    command.upgrade(cfg, "0003")
+    with sqlite3.connect(path) as conn:
+        before = conn.execute("SELECT * FROM ownership ORDER BY object_id, agent_id").fetchall()
+    conn.close()
+    command.upgrade(cfg, "0004")
+    sql, key = _ownership_layout(path)
+    assert key == ["agent_id", "object_id"] and "WITHOUT ROWID" in sql.upper() and "prior_p" not in sql
+    with sqlite3.connect(path) as conn:
+        held = conn.execute("SELECT object_id, agent_id, claim_p FROM ownership").fetchall()
+        chunks = conn.execute("SELECT agent_id, chunk, p, source, time FROM priors "
+                              "ORDER BY agent_id").fetchall()
+    conn.close()
+    assert held == [(1, 1, 1.0)]  # the only row holding a claim or a posterior
+    assert [(a, c, t) for a, c, _, _, t in chunks] == [(1, 0, 60.0), (2, 0, 60.0)]
+    p, source = packing.decode(chunks[0][2], chunks[0][3])
+    assert p[1:3].tolist() == [0.7, 0.3] and packing.source_names(source[1:3]).tolist() == ["prediction"] * 2
+    assert np.isnan(p[0]) and np.isnan(p[3:]).all() and not source[3:].any()
+    other = packing.decode(chunks[1][2], chunks[1][3])[1]
+    assert packing.source_names(other[1:3]).tolist() == ["base-rate"] * 2
+    command.downgrade(cfg, "0003")
+    with sqlite3.connect(path) as conn:
+        after = conn.execute("SELECT * FROM ownership ORDER BY object_id, agent_id").fetchall()
+    conn.close()
+    assert after == before and "priors" not in _tables(path)
+
+
 def test_every_write_transaction_advances_the_generation_and_a_failed_one_does_not(tmp_path: Path) -> None:
     from ownctl.app import things
     from ownctl.app.context import AppContext
