@@ -11,7 +11,7 @@ memory (tested).
 Stored forms: an ownership row holds the claim (with speaker, trust, time) and the posterior (only
 for objects that carry permissions while inference is on; elsewhere the prior stands), and exists
 only where one of them is held; the priors (the prediction, with its source: ``prediction`` or
-``base-rate``) are packed per agent in chunks of object ids (``ownctl/store/priors.py``). A
+``base-rate``) are packed per agent in chunks of object ids (``ownctl/store/packed.py``). A
 permission holds its arrival rank and the object's percepts when it was given. A rule row holds its
 text, origin (given, learned, allow), provenance and rank.
 """
@@ -238,7 +238,7 @@ class Stored:
             ids = tx.things.add_objects([self._row(o) for o in added], mind.now)
             self.ids.update(ids)
             tx.things.add_categories([(ids[o.name], c) for o in added for c in o.categories])
-            tx.things.add_touches([(ids[o.name], self.agent_ids[a], t)
+            tx.touches.add([(ids[o.name], self.agent_ids[a], t)
                                    for o in added for a, t in o.last_touch.items()])
         for spec in changed:
             old = base.objects.get(spec.name)
@@ -251,7 +251,7 @@ class Stored:
                 tx.things.set_categories(oid, spec.categories)
             for agent, t in spec.last_touch.items():
                 if old.last_touch.get(agent) != t:
-                    tx.things.touch(oid, self.agent_ids[agent], t)
+                    tx.touches.touch(oid, self.agent_ids[agent], t)
 
     @staticmethod
     def _row(spec: ObjectSpec) -> dict[str, Any]:
@@ -342,11 +342,8 @@ class Stored:
             i, j = pick // m, pick % m
             tx.beliefs.write_priors(row_ids[i], agent_ids[j], mind.predicted[i, j], mind.prior_source[i, j],
                                     mind.now)
-        flat = np.zeros(len(mind.objects) * m, dtype=np.int8)  # per cell: which kinds changed (bits)
-        flat[cells["claim"]] |= np.int8(1)
-        flat[cells["posterior"]] |= np.int8(2)
-        every = np.flatnonzero(flat)
-        code = flat[every]
+        every = np.union1d(cells["claim"], cells["posterior"])  # the cells, and which kinds changed (bits)
+        code = np.isin(every, cells["claim"]).astype(np.int8) | (np.isin(every, cells["posterior"]) * 2)
         for c in np.unique(code):
             pick = every[code == c]
             kinds = [k for b, k in enumerate(("claim", "posterior")) if c >> b & 1]
@@ -427,7 +424,7 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     focus = None if refit is None or only is not None else [agent_ids[a] for a in dict.fromkeys(refit)]
     rows = tx.things.object_table(ids)
     categories = tx.things.categories(ids)
-    touches = tx.things.touch_times(ids, agent_ids=focus)
+    touches = tx.touches.times(ids, agent_ids=focus)
     specs = [spec_of(r, categories.get(r.id, set()), touches.get(r.id, {})) for r in rows]
     vocabulary = None
     if only is not None:

@@ -54,9 +54,7 @@ def add_agent(ctx: AppContext, name: str) -> Done:
 def list_agents(ctx: AppContext) -> list[dict[str, Any]]:
     """Every agent with how many objects it has touched."""
     with ctx.read() as tx:
-        touched: dict[int, int] = {}
-        for _, aid in tx.things.touches():
-            touched[aid] = touched.get(aid, 0) + 1
+        touched = tx.touches.counts()
         return [{"name": a.name, "touched": touched.get(a.id, 0)} for a in tx.world.agents()]
 
 
@@ -163,7 +161,7 @@ def list_objects(ctx: AppContext) -> list[dict[str, Any]]:
     """Every object with its percepts; ``last_touch`` maps agents to absolute store times."""
     with ctx.read() as tx:
         cats = tx.things.categories()
-        touched = tx.things.touch_times()
+        touched = tx.touches.times()
         return [_object_dict(o, cats.get(o.id, set()), touched.get(o.id, {})) for o in tx.things.objects()]
 
 
@@ -173,7 +171,7 @@ def show_object(ctx: AppContext, name: str) -> dict[str, Any]:
 
     with ctx.read() as tx:
         row = tx.things.object(name)
-        touches = tx.things.touch_times([row.id]).get(row.id, {})
+        touches = tx.touches.times([row.id]).get(row.id, {})
         out = _object_dict(row, tx.things.categories([row.id]).get(row.id, set()), touches)
         out["permissions"] = [
             {"id": p.id, "action": p.action, "value": p.value} for p in tx.knowledge.permissions(row.id)

@@ -83,7 +83,7 @@ def current_world(ctx: AppContext, name: str = "") -> World:
     with ctx.read() as tx:
         agents = {a.id: a.name for a in tx.world.agents()}
         categories = tx.things.categories()
-        touched = tx.things.touch_times()
+        touched = tx.touches.times()
         rows = tx.things.objects()
         specs = [spec_of(o, categories.get(o.id, set()), touched.get(o.id, {})) for o in rows]
         objects = tuple(replace(s, last_touch={a: max(0.0, ctx.now - t) for a, t in s.last_touch.items()})

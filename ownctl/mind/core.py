@@ -34,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ownctl.config import Settings
+from ownctl.config import PredictConfig, Settings
 from ownctl.errors import DuplicateName, OwnctlError
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import Outcome, learn_norm, learn_permission
@@ -43,7 +43,7 @@ from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import Norm, Rule
 from ownctl.logic.vocab import ACTIONS
-from ownctl.ownership.features import agent_features
+from ownctl.ownership.features import percept_features, recency_feature
 from ownctl.ownership.infer import posterior
 from ownctl.ownership.predict import KernelOwnershipModel, calibrated_base_rate
 from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
@@ -122,6 +122,14 @@ class _Percepts:
         self.colors: list[str | None] = [o.color for o in objects]
         self._touches: dict[str, np.ndarray] = {}
         self._palette: tuple[tuple[str, ...], tuple[str, ...]] | None = None
+        self._shared: tuple[Any, np.ndarray] | None = None
+
+    def shared_features(self, palette: Sequence[str | None], cfg: PredictConfig) -> np.ndarray:
+        """The predictor features every agent shares (position, colour), kept until percepts change."""
+        key = (tuple(palette), cfg)
+        if self._shared is None or self._shared[0] != key:
+            self._shared = (key, percept_features(self.positions, self.colors, palette, cfg))
+        return self._shared[1]
 
     def palette(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
         """The sorted distinct colours and categories of the objects."""
@@ -132,11 +140,32 @@ class _Percepts:
         return self._palette
 
     def touch_times(self, agent: str) -> np.ndarray:
-        """(n,) absolute time of ``agent``'s last touch of each object, NaN where it never touched."""
-        if agent not in self._touches:
+        """(n,) absolute time of ``agent``'s last touch of each object, NaN where it never touched.
+
+        The first request reads every agent's touches in one pass over the objects (a claim refits
+        one agent, loading a world every agent: one pass costs about what one agent's does)."""
+        if not self._touches:
+            self._touches = self._all_touches()
+        if agent not in self._touches:  # touched nothing when the pass was made
             self._touches[agent] = np.array([o.last_touch.get(agent, np.nan) for o in self._objects],
                                             dtype=float)
         return self._touches[agent]
+
+    def _all_touches(self) -> dict[str, np.ndarray]:
+        rows: list[int] = []
+        names: list[str] = []
+        times: list[float] = []
+        for i, o in enumerate(self._objects):
+            if o.last_touch:
+                rows.extend([i] * len(o.last_touch))
+                names.extend(o.last_touch)
+                times.extend(o.last_touch.values())
+        agents = sorted(set(names))
+        column = {a: j for j, a in enumerate(agents)}
+        table = np.full((len(agents), len(self._objects)), np.nan)
+        table[np.fromiter(map(column.__getitem__, names), dtype=np.intp, count=len(names)),
+              np.asarray(rows, dtype=np.intp)] = times
+        return {a: table[j] for j, a in enumerate(agents)}
 
     def touched(self, i: int, agent: str, time: float) -> None:
         """Object ``i`` was touched by ``agent`` at ``time``."""
@@ -148,6 +177,7 @@ class _Percepts:
         self.positions[i] = positions([spec])[0]
         self.colors[i] = spec.color
         self._palette = None
+        self._shared = None
         for agent, times in self._touches.items():
             times[i] = spec.last_touch.get(agent, np.nan)
 
@@ -313,7 +343,8 @@ class Mind:
         seen = self.percepts()
         times = seen.touch_times(agent)
         ages = np.maximum(0.0, self.now - times)  # NaN (never touched) stays NaN
-        X = agent_features(seen.positions, seen.colors, ages, self.vocab.colors, self.settings.predict)
+        cfg = self.settings.predict
+        X = np.hstack([seen.shared_features(self.vocab.colors, cfg), recency_feature(ages, cfg)])
         return X, ~np.isnan(self.claims[:, j])
 
     def _predict(self, j: int) -> None:

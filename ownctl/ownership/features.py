@@ -31,6 +31,37 @@ def _spread(values: np.ndarray) -> float:
     return rms if rms > MIN_SCALE else 1.0
 
 
+def percept_features(
+    positions: np.ndarray, colors: Sequence[str | None], palette: Sequence[str | None], cfg: PredictConfig,
+) -> np.ndarray:
+    """(n, 3 + colours) weighted features every agent shares: standardised xyz and colour one-hot.
+
+    ``positions`` (n, 3) may hold NaN (unknown position: placed at the mean position)."""
+    pos = np.asarray(positions, dtype=float).reshape(-1, 3)
+    n = len(pos)
+    known = ~np.isnan(pos).any(axis=1)
+    centre = pos[known].mean(axis=0) if known.any() else np.zeros(3)
+    pos = np.where(known[:, None], pos, centre[None, :])
+    pos = (pos - centre) / _spread(pos[known]) if known.any() else pos
+    onehot = np.zeros((n, max(len(palette), 1)))
+    index = {c: i for i, c in enumerate(palette)}
+    column = np.fromiter((index.get(c, -1) if c is not None else -1 for c in colors), dtype=np.intp, count=n)
+    held = column >= 0
+    onehot[np.flatnonzero(held), column[held]] = 1.0
+    return np.hstack([cfg.position_weight * pos, (cfg.color_weight / np.sqrt(2.0)) * onehot])
+
+
+def recency_feature(ages: np.ndarray, cfg: PredictConfig) -> np.ndarray:
+    """(n, 1) weighted standardised log-recency of one agent's touches; ``ages`` (n,) may hold NaN
+    (never touched: ``NEVER_AGE``)."""
+    age = np.asarray(ages, dtype=float).reshape(-1)
+    age = np.where(np.isnan(age), NEVER_AGE, np.maximum(age, 0.0))
+    recency = np.log1p(age)[:, None]
+    recency = (recency - recency.mean()) / _spread(recency) if len(age) else recency
+    out: np.ndarray = cfg.recency_weight * recency
+    return out
+
+
 def agent_features(
     positions: np.ndarray,
     colors: Sequence[str | None],
@@ -42,27 +73,7 @@ def agent_features(
 
     ``positions`` (n, 3) may hold NaN (unknown position: placed at the mean position); ``ages`` (n,)
     may hold NaN (never touched: ``NEVER_AGE``). The squared Euclidean distance between rows is the
-    kernel's distance.
+    kernel's distance. The first two parts are :func:`percept_features`, the last
+    :func:`recency_feature`.
     """
-    pos = np.asarray(positions, dtype=float).reshape(-1, 3)
-    n = len(pos)
-    known = ~np.isnan(pos).any(axis=1)
-    centre = pos[known].mean(axis=0) if known.any() else np.zeros(3)
-    pos = np.where(known[:, None], pos, centre[None, :])
-    pos = (pos - centre) / _spread(pos[known]) if known.any() else pos
-    onehot = np.zeros((n, max(len(palette), 1)))
-    index = {c: i for i, c in enumerate(palette)}
-    for i, c in enumerate(colors):
-        if c in index:
-            onehot[i, index[c]] = 1.0
-    age = np.asarray(ages, dtype=float).reshape(n)
-    age = np.where(np.isnan(age), NEVER_AGE, np.maximum(age, 0.0))
-    recency = np.log1p(age)[:, None]
-    recency = (recency - recency.mean()) / _spread(recency) if n else recency
-    return np.hstack(
-        [
-            cfg.position_weight * pos,
-            (cfg.color_weight / np.sqrt(2.0)) * onehot,
-            cfg.recency_weight * recency,
-        ]
-    )
+    return np.hstack([percept_features(positions, colors, palette, cfg), recency_feature(ages, cfg)])

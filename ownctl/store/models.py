@@ -89,12 +89,14 @@ class Category(Base):
 
 
 class Touch(Base):
-    """The last time (absolute, store clock) an agent interacted with an object."""
+    """The last times (absolute, store clock) one agent interacted with a chunk of object ids, packed
+    (``ownctl/store/packed.py``: float64, NaN where it never did)."""
 
     __tablename__ = "touches"
-    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"), primary_key=True)
+    __table_args__ = ({"sqlite_with_rowid": False},)
     agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
-    time: Mapped[float] = mapped_column(Float)
+    chunk: Mapped[int] = mapped_column(Integer, primary_key=True)
+    times: Mapped[bytes] = mapped_column(LargeBinary)
 
 
 class Area(Base):
@@ -136,7 +138,7 @@ class Ownership(Base):
 
 
 class Prior(Base):
-    """The predicted priors of one agent about a chunk of object ids (``ownctl/store/priors.py``):
+    """The predicted priors of one agent about a chunk of object ids (``ownctl/store/packed.py``):
     probabilities (float64, NaN where none is held) and source codes, packed, and the chunk's last
     write time."""
 

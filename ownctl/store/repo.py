@@ -3,7 +3,7 @@
 :class:`Tx` wraps a SQLAlchemy session; the app layer never sees SQL. Lookups by name raise
 :class:`UnknownName` listing the known names; adding a taken name raises :class:`DuplicateName`.
 Claims and posteriors about many (object, agent) pairs are written with one bulk upsert by primary
-key; priors are packed per agent in chunks of object ids (``ownctl/store/priors.py``).
+key; priors are packed per agent in chunks of object ids (``ownctl/store/packed.py``).
 """
 
 from __future__ import annotations
@@ -19,7 +19,7 @@ from sqlalchemy import Table, delete, func, insert, select, update
 from sqlalchemy.orm import Session
 
 from ownctl.errors import DuplicateName, StoreError, UnknownName
-from ownctl.store import priors as packing
+from ownctl.store import packed as packing
 from ownctl.store.models import (
     Agent,
     Area,
@@ -99,6 +99,92 @@ def bulk_upsert(session: Session, table: str, keys: Sequence[str], columns: Sequ
     marks = ", ".join("?" for _ in names)
     rows = list(zip(*(values[c] for c in names), strict=True))
     conn.exec_driver_sql(f"INSERT INTO {table} ({', '.join(names)}) VALUES ({marks}) {conflict}", rows)
+
+
+@dataclass(frozen=True)
+class PackedTable:
+    """A table of per-agent chunks of object ids (``ownctl/store/packed.py``): its packed array
+    columns with their types, and its per-chunk scalar columns."""
+
+    name: str
+    arrays: tuple[tuple[str, np.dtype], ...]
+    scalars: tuple[str, ...] = ()
+
+
+PRIORS = PackedTable("priors", (("p", packing.FLOAT), ("source", packing.CODE)), ("time",))
+TOUCHES = PackedTable("touches", (("times", packing.FLOAT),))
+
+
+def read_packed(session: Session, table: PackedTable, object_ids: Sequence[int] | np.ndarray,
+                agent_ids: Sequence[int]) -> dict[str, np.ndarray]:
+    """Column -> (len(object_ids), len(agent_ids)) values of ``table``: NaN (floats) or 0 (codes)
+    where nothing is held; a scalar column gives its chunk's value to every cell the chunk holds."""
+    objs = np.asarray(object_ids, dtype=np.int64)
+    n, m = len(objs), len(agent_ids)
+    out = {c: np.full((n, m), np.nan) if t.kind == "f" else np.zeros((n, m), dtype=t)
+           for c, t in table.arrays}
+    out.update({c: np.full((n, m), np.nan) for c in table.scalars})
+    if not n or not m:
+        return out
+    chunk, slot = packing.chunk_of(objs)
+    column = {int(a): j for j, a in enumerate(agent_ids)}
+    wanted = np.unique(chunk).tolist()
+    by_chunk = {c: np.flatnonzero(chunk == c) for c in wanted}
+    names = [c for c, _ in table.arrays]
+    where = [f"agent_id IN ({', '.join(str(a) for a in column)})"]
+    if len(wanted) < CHUNK:
+        where.append(f"chunk IN ({', '.join(str(c) for c in wanted)})")
+    sql = (f"SELECT agent_id, chunk, {', '.join([*names, *table.scalars])} FROM {table.name} "
+           f"WHERE {' AND '.join(where)}")
+    for agent, c, *values in session.connection().exec_driver_sql(sql):
+        rows = by_chunk.get(int(c))
+        if rows is None:
+            continue
+        j, here = column[int(agent)], slot[rows]
+        for (name, dtype), data in zip(table.arrays, values, strict=False):
+            out[name][rows, j] = packing.decode(data, dtype)[here]
+        for name, value in zip(table.scalars, values[len(names):], strict=True):
+            out[name][rows, j] = value
+    return out
+
+
+def write_packed(session: Session, table: PackedTable, object_ids: Sequence[int] | np.ndarray,
+                 agent_ids: Sequence[int] | np.ndarray, values: Mapping[str, np.ndarray],
+                 scalars: Mapping[str, Any] | None = None) -> None:
+    """Set the cells (object_ids[k], agent_ids[k]) of every array column of ``table`` to
+    ``values[column][k]``, rewriting each touched chunk once (its scalar columns become
+    ``scalars``). A pair given twice takes its last value."""
+    if not len(object_ids):
+        return
+    objs = np.asarray(object_ids, dtype=np.int64)
+    agents = np.asarray(agent_ids, dtype=np.int64)
+    chunk, slot = packing.chunk_of(objs)
+    key = agents * (int(chunk.max()) + 1) + chunk  # one integer per (agent, chunk)
+    order = np.argsort(key, kind="stable")
+    parts = np.split(order, np.flatnonzero(np.diff(key[order])) + 1)
+    keys = [(int(agents[part[0]]), int(chunk[part[0]])) for part in parts]
+    names = [c for c, _ in table.arrays]
+    conn = session.connection()
+    sql = (f"SELECT agent_id, chunk, {', '.join(names)} FROM {table.name} "
+           f"WHERE agent_id IN ({', '.join(str(a) for a in sorted({a for a, _ in keys}))}) "
+           f"AND chunk IN ({', '.join(str(c) for c in sorted({c for _, c in keys}))})")
+    stored = {(int(a), int(c)): data for a, c, *data in conn.exec_driver_sql(sql)}
+    extra = [scalars[c] for c in table.scalars] if scalars else []
+    rows: list[tuple[Any, ...]] = []
+    for k, part in zip(keys, parts, strict=True):
+        held = stored.get(k)
+        packed = []
+        for n, (name, dtype) in enumerate(table.arrays):
+            array = packing.empty(dtype) if held is None else packing.decode(held[n], dtype)
+            array[slot[part]] = values[name][part]
+            packed.append(packing.encode(array, dtype))
+        rows.append((*k, *packed, *extra))
+    old = [{"a": a, "c": c} for a, c in keys if (a, c) in stored]
+    if old:
+        mark = "%({})s" if conn.dialect.name == "postgresql" else ":{}"
+        conn.exec_driver_sql(f"DELETE FROM {table.name} WHERE agent_id = {mark.format('a')} "
+                             f"AND chunk = {mark.format('c')}", old)
+    bulk_insert(session, table.name, ("agent_id", "chunk", *names, *table.scalars), rows)
 
 
 @dataclass(frozen=True)
@@ -250,9 +336,10 @@ class Things(_Part):
         """Forget objects (their beliefs, touches, categories and permissions cascade)."""
         ids = list(object_ids)
         self.tx.beliefs.clear_priors(ids)
+        self.tx.touches.clear(ids)
         for start in range(0, len(ids), CHUNK):
             chunk = ids[start : start + CHUNK]
-            for table in (Ownership, Touch, Category, Permission, TruthOwner):
+            for table in (Ownership, Category, Permission, TruthOwner):
                 self.session.execute(delete(table).where(table.object_id.in_(chunk)))
             self.session.execute(update(Conversation).where(Conversation.target_id.in_(chunk))
                                  .values(target_id=None))
@@ -300,54 +387,69 @@ class Things(_Part):
                 [{"object_id": o, "category": c} for o, c in sorted(set(rows))],
             )
 
-    def touches(
+
+class Touches(_Part):
+    """When each agent last interacted with each object, packed per agent (``ownctl/store/packed.py``)."""
+
+    def table(self, object_ids: Sequence[int] | None = None,
+                    agent_ids: Sequence[int] | None = None) -> tuple[list[int], list[int], np.ndarray]:
+        """(object ids, agent ids, (objects, agents) absolute times of each agent's last interaction,
+        NaN where it never interacted): every object and agent unless given."""
+        objects = (list(self.session.scalars(select(Object.id).order_by(Object.id))) if object_ids is None
+                   else list(object_ids))
+        agents = sorted(a.id for a in self.tx.world.agents()) if agent_ids is None else list(agent_ids)
+        return objects, agents, read_packed(self.session, TOUCHES, objects, agents)["times"]
+
+    def pairs(
         self, agent_id: int | None = None, object_ids: Sequence[int] | None = None
     ) -> dict[tuple[int, int], float]:
         """(object id, agent id) -> absolute time of the agent's last interaction.
 
         Optionally only one agent's and/or only some objects' interactions.
         """
-        query = select(Touch.object_id, Touch.agent_id, Touch.time)
-        if agent_id is not None:
-            query = query.where(Touch.agent_id == agent_id)
-        if object_ids is None:
-            return {(o, a): t for o, a, t in self.session.execute(query).all()}
-        ids, out = list(object_ids), {}
-        for start in range(0, len(ids), CHUNK):
-            chunk = query.where(Touch.object_id.in_(ids[start : start + CHUNK]))
-            out.update({(o, a): t for o, a, t in self.session.execute(chunk).all()})
-        return out
+        objects, agents, times = self.table(object_ids, None if agent_id is None else [agent_id])
+        i, j = np.nonzero(~np.isnan(times))
+        return {(objects[a], agents[b]): float(times[a, b])
+                for a, b in zip(i.tolist(), j.tolist(), strict=True)}
 
-    def touch_times(
+    def counts(self) -> dict[int, int]:
+        """agent id -> how many objects it has interacted with."""
+        _, agents, times = self.table()
+        return dict(zip(agents, (~np.isnan(times)).sum(axis=0).tolist(), strict=True))
+
+    def times(
         self, object_ids: Sequence[int] | None = None, agent_ids: Sequence[int] | None = None
     ) -> dict[int, dict[str, float]]:
         """object id -> {agent name: absolute time of its last interaction} (optionally some objects,
         and only some agents' interactions)."""
         names = {a.id: a.name for a in self.tx.world.agents()}
+        objects, agents, times = self.table(object_ids, agent_ids)
+        who = [names[a] for a in agents]
         out: dict[int, dict[str, float]] = {}
-        if agent_ids is not None:
-            pairs: dict[tuple[int, int], float] = {}
-            for aid in agent_ids:
-                pairs.update(self.touches(agent_id=aid, object_ids=object_ids))
-        else:
-            pairs = self.touches(object_ids=object_ids)
-        for (oid, aid), time in pairs.items():
-            out.setdefault(oid, {})[names[aid]] = time
+        for oid, row in zip(objects, times.tolist(), strict=True):
+            held = {a: t for a, t in zip(who, row, strict=True) if t == t}  # t != t: NaN, never touched
+            if held:
+                out[oid] = held
         return out
 
     def touch(self, object_id: int, agent_id: int, time: float) -> None:
         """Record that an agent interacted with an object at ``time`` (absolute store time)."""
-        row = self.session.get(Touch, (object_id, agent_id))
-        if row is None:
-            self.session.add(Touch(object_id=object_id, agent_id=agent_id, time=time))
-        else:
-            row.time = time
-        self.session.flush()
+        self.add([(object_id, agent_id, time)])
 
-    def add_touches(self, rows: Sequence[tuple[int, int, float]]) -> None:
-        """Many (object id, agent id, time) interactions of objects that have none yet, at once."""
+    def add(self, rows: Sequence[tuple[int, int, float]]) -> None:
+        """Many (object id, agent id, time) interactions at once (a pair given twice: the last)."""
         if rows:
-            bulk_insert(self.session, "touches", ("object_id", "agent_id", "time"), rows)
+            objects, agents, times = zip(*rows, strict=True)
+            write_packed(self.session, TOUCHES, objects, agents, {"times": np.asarray(times, dtype=float)})
+            self._expire(Touch)
+
+    def clear(self, object_ids: Sequence[int]) -> None:
+        """Forget every agent's interactions with ``object_ids`` (objects being removed: ids are reused)."""
+        agents = [a.id for a in self.tx.world.agents()]
+        if object_ids and agents:
+            objects = [o for o in object_ids for _ in agents]
+            write_packed(self.session, TOUCHES, objects, agents * len(object_ids),
+                         {"times": np.full(len(objects), np.nan)})
 
 
 #: The ownership columns of each kind of belief a row holds, and the prior's (packed in ``priors``).
@@ -411,73 +513,23 @@ class Beliefs(_Part):
         return {int(a): int(n) for a, n in self.session.execute(query).all()}
 
     def priors(self, object_ids: Sequence[int], agent_ids: Sequence[int]) -> PriorTable:
-        """The priors of ``object_ids`` x ``agent_ids``, read chunk by chunk (``ownctl/store/priors.py``)."""
-        objs = np.asarray(object_ids, dtype=np.int64)
-        n, m = len(objs), len(agent_ids)
-        out = PriorTable(np.full((n, m), np.nan), np.full((n, m), None, dtype=object),
-                         np.full((n, m), np.nan))
-        if not n or not m:
-            return out
-        chunk, slot = packing.chunk_of(objs)
-        column = {int(a): j for j, a in enumerate(agent_ids)}
-        wanted = np.unique(chunk).tolist()
-        by_chunk = {c: np.flatnonzero(chunk == c) for c in wanted}
-        query = select(Prior.agent_id, Prior.chunk, Prior.p, Prior.source, Prior.time).where(
-            Prior.agent_id.in_(list(column)))
-        if len(wanted) < CHUNK:
-            query = query.where(Prior.chunk.in_(wanted))
-        for agent, c, p, source, time in self.session.execute(query):
-            rows = by_chunk.get(int(c))
-            if rows is None:
-                continue
-            values, codes = packing.decode(p, source)
-            j = column[int(agent)]
-            here = slot[rows]
-            out.p[rows, j] = values[here]
-            held = codes[here] > 0
-            out.source[rows, j] = packing.source_names(codes[here])
-            out.time[rows[held], j] = time
-        return out
+        """The priors of ``object_ids`` x ``agent_ids``, read chunk by chunk (``ownctl/store/packed.py``)."""
+        got = read_packed(self.session, PRIORS, object_ids, agent_ids)
+        return PriorTable(got["p"], packing.source_names(got["source"]), got["time"])
 
     def write_priors(self, object_ids: Sequence[int] | np.ndarray, agent_ids: Sequence[int] | np.ndarray,
                      p: Sequence[float | None] | np.ndarray, source: Sequence[str | None] | np.ndarray,
                      time: float) -> None:
         """Set the priors of the pairs (object_ids[k], agent_ids[k]) (None or NaN: none held),
         rewriting each touched chunk once; the chunks' write time becomes ``time``."""
-        if not len(object_ids):
-            return
-        objs = np.asarray(object_ids, dtype=np.int64)
-        agents = np.asarray(agent_ids, dtype=np.int64)
         values = np.asarray([np.nan if v is None else v for v in p] if not isinstance(p, np.ndarray) else p,
                             dtype=float)
         codes = packing.source_codes(source)
         none = np.isnan(values)
         codes[none] = 0
         codes[(codes == 0) & ~none] = packing.SOURCES.index("prediction")  # a prior of unnamed source
-        chunk, slot = packing.chunk_of(objs)
-        key = agents * (int(chunk.max()) + 1) + chunk  # one integer per (agent, chunk)
-        order = np.argsort(key, kind="stable")
-        bounds = np.flatnonzero(np.diff(key[order])) + 1
-        parts = np.split(order, bounds)
-        keys = [(int(agents[part[0]]), int(chunk[part[0]])) for part in parts]
-        stored: dict[tuple[int, int], tuple[np.ndarray, np.ndarray]] = {}
-        query = select(Prior.agent_id, Prior.chunk, Prior.p, Prior.source).where(
-            Prior.agent_id.in_(sorted({a for a, _ in keys})), Prior.chunk.in_(sorted({c for _, c in keys})))
-        for agent, c, pb, sb in self.session.execute(query):
-            stored[(int(agent), int(c))] = packing.decode(pb, sb)
-        rows: list[tuple[int, int, bytes, bytes, float]] = []
-        for k, part in zip(keys, parts, strict=True):
-            have, code = stored.get(k) or packing.empty()
-            have[slot[part]] = values[part]
-            code[slot[part]] = codes[part]
-            rows.append((*k, *packing.encode(have, code), time))
-        old = [{"a": a, "c": c} for a, c in keys if (a, c) in stored]
-        if old:
-            conn = self.session.connection()
-            mark = "%({})s" if conn.dialect.name == "postgresql" else ":{}"
-            conn.exec_driver_sql(f"DELETE FROM priors WHERE agent_id = {mark.format('a')} "
-                                 f"AND chunk = {mark.format('c')}", old)
-        bulk_insert(self.session, "priors", ("agent_id", "chunk", "p", "source", "time"), rows)
+        write_packed(self.session, PRIORS, object_ids, agent_ids, {"p": values, "source": codes},
+                     {"time": time})
         self._expire(Prior)
 
     def clear_priors(self, object_ids: Sequence[int]) -> None:
@@ -777,8 +829,9 @@ class Meta(_Part):
 
 class Tx:
     """Typed access to the store inside one transaction, by concern: ``world`` (agents, areas),
-    ``things`` (objects and percepts), ``beliefs`` (ownership), ``knowledge`` (permissions, rules,
-    ground truth) and ``meta`` (settings, conversation, event log)."""
+    ``things`` (objects and percepts), ``touches`` (interactions), ``beliefs`` (ownership),
+    ``knowledge`` (permissions, rules, ground truth) and ``meta`` (settings, conversation, event
+    log)."""
 
     def __init__(self, session: Session) -> None:
         self.session = session
@@ -790,6 +843,7 @@ class Tx:
         self.previous: int | None = None
         self.world = World(self)
         self.things = Things(self)
+        self.touches = Touches(self)
         self.beliefs = Beliefs(self)
         self.knowledge = Knowledge(self)
         self.meta = Meta(self)

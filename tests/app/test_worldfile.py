@@ -96,7 +96,7 @@ def test_load_turns_ages_into_absolute_times_and_keeps_truth_apart(tmp_path: Pat
     done = worldfile.load(ctx, str(path))
     assert done.data == {"world": "kitchen", "agents": 2, "areas": 1, "objects": 2, "norms": 2}
     with ctx.read() as tx:
-        touches = {(o, a): t for (o, a), t in tx.things.touches().items()}
+        touches = {(o, a): t for (o, a), t in tx.touches.pairs().items()}
         assert sorted(touches.values()) == [750.0, 995.0]
         assert tx.knowledge.truth_norms()[0] == "forbid trash if ownedBy any"
         assert tx.knowledge.rules() == []  # true norms are not beliefs

@@ -308,8 +308,10 @@ def test_a_battery_of_bad_input_is_one_line_and_writes_nothing(
     before = world.digest()
     _one_error_line(world(*args, code=None))
     assert world.digest() == before
-    if args[0] != "--db":  # the same line inside a batch (a batch line cannot name another store)
-        line = shlex.join(args)
+    line = shlex.join(args)
+    # the same line inside a batch (a batch line cannot name another store; standard input is
+    # UTF-8, so it cannot carry the lone surrogates undecodable argv bytes become)
+    if args[0] != "--db" and line.encode("utf-8", "surrogatepass").decode("utf-8", "replace") == line:
         result = world("batch", "-", input=line + "\n", code=None)
         first = "stdin:1: " if "\n" not in line and "\r" not in line else "stdin:"
         _one_error_line(result, prefix=f"ownctl: {first}")

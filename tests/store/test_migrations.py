@@ -173,7 +173,7 @@ def test_the_generation_revision_keys_beliefs_by_agent_and_back(tmp_path: Path) 
 def test_the_packed_priors_revision_moves_priors_into_chunks_and_back(tmp_path: Path) -> None:
     import numpy as np
 
-    from ownctl.store import priors as packing
+    from ownctl.store import packed as packing
 
     path = tmp_path / "p.db"
     cfg = alembic_config(url=f"sqlite:///{path}")
@@ -196,10 +196,10 @@ def test_the_packed_priors_revision_moves_priors_into_chunks_and_back(tmp_path: 
     conn.close()
     assert held == [(1, 1, 1.0)]  # the only row holding a claim or a posterior
     assert [(a, c, t) for a, c, _, _, t in chunks] == [(1, 0, 60.0), (2, 0, 60.0)]
-    p, source = packing.decode(chunks[0][2], chunks[0][3])
+    p, source = packing.decode(chunks[0][2], packing.FLOAT), packing.decode(chunks[0][3], packing.CODE)
     assert p[1:3].tolist() == [0.7, 0.3] and packing.source_names(source[1:3]).tolist() == ["prediction"] * 2
     assert np.isnan(p[0]) and np.isnan(p[3:]).all() and not source[3:].any()
-    other = packing.decode(chunks[1][2], chunks[1][3])[1]
+    other = packing.decode(chunks[1][3], packing.CODE)
     assert packing.source_names(other[1:3]).tolist() == ["base-rate"] * 2
     command.downgrade(cfg, "0003")
     with sqlite3.connect(path) as conn:

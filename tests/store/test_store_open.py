@@ -161,7 +161,7 @@ def test_the_repository_is_split_by_concern() -> None:
 
     from ownctl.store import repo
 
-    parts = {"world": repo.World, "things": repo.Things, "beliefs": repo.Beliefs,
+    parts = {"world": repo.World, "things": repo.Things, "touches": repo.Touches, "beliefs": repo.Beliefs,
              "knowledge": repo.Knowledge, "meta": repo.Meta}
     for name, part in parts.items():
         public = [m for m, _ in inspect.getmembers(part, inspect.isfunction) if not m.startswith("_")]

@@ -9,15 +9,16 @@ import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
-from ownctl.store import priors as packing
+from ownctl.store import packed as packing
 from ownctl.store.engine import Store, locate, open_store
 
 
 def test_encode_decode_round_trip_keeps_nan_and_codes() -> None:
-    p, codes = packing.empty()
+    p, codes = packing.empty(packing.FLOAT), packing.empty(packing.CODE)
     p[[0, 7, packing.CHUNK - 1]] = [0.25, 1e-300, 0.999]
     codes[[0, 7, packing.CHUNK - 1]] = [1, 2, 1]
-    back_p, back_codes = packing.decode(*packing.encode(p, codes))
+    back_p = packing.decode(packing.encode(p, packing.FLOAT), packing.FLOAT)
+    back_codes = packing.decode(packing.encode(codes, packing.CODE), packing.CODE)
     assert np.array_equal(back_p, p, equal_nan=True) and np.array_equal(back_codes, codes)
     assert packing.source_names(back_codes[[0, 7, 1]]).tolist() == ["prediction", "base-rate", None]
 

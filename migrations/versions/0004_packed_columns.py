@@ -1,4 +1,4 @@
-"""Priors packed per agent in chunks of object ids; ownership rows only where a claim or posterior is.
+"""Priors and touches packed per agent in chunks of object ids; ownership rows only where needed.
 
 - ``priors``: one row per (agent, chunk of 4,096 object ids) holding the chunk's predicted priors
   (float64, little-endian, NaN where none is held), their sources (one byte each: 0 none,
@@ -6,6 +6,8 @@
   ``ownership`` move there (a chunk's time becomes the latest ``prior_time`` among its priors).
 - ``ownership`` loses ``prior_p``, ``prior_source`` and ``prior_time``, and keeps only the rows that
   hold a claim or a posterior.
+- ``touches``: one row per (agent, chunk) holding the chunk's last-touch times (float64, NaN where
+  the agent never touched the object) instead of one row per touched (object, agent) pair.
 
 The packing is written out here, not imported, so that this revision keeps meaning what it meant.
 
@@ -78,8 +80,65 @@ def _rebuild(with_priors: bool, where: str = "") -> None:
     op.create_index(op.f("ix_ownership_object_id"), "ownership", ["object_id"])
 
 
+def _touch_rows() -> list[tuple[int, int, float]]:
+    """The (object, agent, time) touches of revision 0003's layout."""
+    return [(int(o), int(a), float(t)) for o, a, t in
+            op.get_bind().execute(sa.text("SELECT object_id, agent_id, time FROM touches")).all()]
+
+
+def _packed_touches() -> None:
+    """Replace the touch rows by packed chunks."""
+    chunks: dict[tuple[int, int], np.ndarray] = {}
+    for obj, agent, time in _touch_rows():
+        key = (agent, obj // CHUNK)
+        if key not in chunks:
+            chunks[key] = np.full(CHUNK, np.nan, dtype="<f8")
+        chunks[key][obj % CHUNK] = time
+    op.drop_table("touches")
+    table = op.create_table(
+        "touches",
+        sa.Column("agent_id", sa.Integer(), nullable=False),
+        sa.Column("chunk", sa.Integer(), nullable=False),
+        sa.Column("times", sa.LargeBinary(), nullable=False),
+        sa.ForeignKeyConstraint(["agent_id"], ["agents.id"], name=op.f("fk_touches_agent_id_agents"),
+                                ondelete="CASCADE"),
+        sa.PrimaryKeyConstraint("agent_id", "chunk", name=op.f("pk_touches")),
+        sqlite_with_rowid=False,
+    )
+    if chunks:
+        op.bulk_insert(table, [{"agent_id": a, "chunk": c, "times": v.tobytes()}
+                               for (a, c), v in sorted(chunks.items())])
+
+
+def _row_touches() -> None:
+    """Replace the packed chunks by one touch row per touched (object, agent) pair."""
+    rows = []
+    packed = op.get_bind().execute(sa.text("SELECT agent_id, chunk, times FROM touches")).all()
+    for agent, chunk, times in packed:
+        values = np.frombuffer(times, dtype="<f8")
+        rows += [{"object_id": int(chunk) * CHUNK + int(k), "agent_id": int(agent), "time": float(values[k])}
+                 for k in np.flatnonzero(~np.isnan(values))]
+    ids = {int(r[0]) for r in op.get_bind().execute(sa.text("SELECT id FROM objects")).all()}
+    op.drop_table("touches")
+    table = op.create_table(
+        "touches",
+        sa.Column("object_id", sa.Integer(), nullable=False),
+        sa.Column("agent_id", sa.Integer(), nullable=False),
+        sa.Column("time", sa.Float(), nullable=False),
+        sa.ForeignKeyConstraint(["agent_id"], ["agents.id"], name=op.f("fk_touches_agent_id_agents"),
+                                ondelete="CASCADE"),
+        sa.ForeignKeyConstraint(["object_id"], ["objects.id"], name=op.f("fk_touches_object_id_objects"),
+                                ondelete="CASCADE"),
+        sa.PrimaryKeyConstraint("object_id", "agent_id", name=op.f("pk_touches")),
+    )
+    rows = sorted((r for r in rows if r["object_id"] in ids), key=lambda r: (r["object_id"], r["agent_id"]))
+    if rows:
+        op.bulk_insert(table, rows)
+
+
 def upgrade() -> None:
-    """Pack the priors into chunks, then drop them and the empty rows from ownership."""
+    """Pack the priors and touches into chunks, then drop the priors and the empty rows from ownership."""
+    _packed_touches()
     bind = op.get_bind()
     priors = op.create_table(
         "priors",
@@ -117,7 +176,9 @@ def upgrade() -> None:
 
 
 def downgrade() -> None:
-    """One ownership row per (object, agent) again, with the priors unpacked into it."""
+    """One ownership row per (object, agent) again, with the priors unpacked into it; one touch row
+    per touched pair."""
+    _row_touches()
     bind = op.get_bind()
     if bind.dialect.name == "sqlite":
         _rebuild(with_priors=True)
