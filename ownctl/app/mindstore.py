@@ -238,8 +238,15 @@ class Stored:
             ids = tx.things.add_objects([self._row(o) for o in added], mind.now)
             self.ids.update(ids)
             tx.things.add_categories([(ids[o.name], c) for o in added for c in o.categories])
-            tx.touches.add([(ids[o.name], self.agent_ids[a], t)
-                                   for o in added for a, t in o.last_touch.items()])
+            objects: list[int] = []
+            agents: list[int] = []
+            times: list[float] = []
+            for o in added:
+                if o.last_touch:
+                    objects.extend([ids[o.name]] * len(o.last_touch))
+                    agents.extend(map(self.agent_ids.__getitem__, o.last_touch))
+                    times.extend(o.last_touch.values())
+            tx.touches.add(objects, agents, times)
         for spec in changed:
             old = base.objects.get(spec.name)
             if old is None or old is spec or old == spec:

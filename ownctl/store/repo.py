@@ -8,6 +8,7 @@ key; priors are packed per agent in chunks of object ids (``ownctl/store/packed.
 
 from __future__ import annotations
 
+import json
 from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
@@ -62,8 +63,8 @@ def _pg_array_type(column: str) -> str:
 
 
 def bulk_insert(session: Session, table: str, columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> None:
-    """Insert many rows of plain values (no JSON columns) with one statement: COPY on PostgreSQL,
-    one executemany on SQLite (no per-row ORM or parameter-dict work)."""
+    """Insert many rows of plain values (a JSON column given as its text) with one statement: COPY
+    on PostgreSQL, one executemany on SQLite (no per-row ORM or parameter-dict work)."""
     conn = session.connection()
     names = ", ".join(columns)
     if conn.dialect.name == "postgresql":
@@ -316,8 +317,9 @@ class Things(_Part):
         if not specs:
             return {}
         keys = ("name", "color", "x", "y", "z")
-        rows = [{**{k: s.get(k) for k in keys}, "extra": s.get("extra") or {}, "created": now} for s in specs]
-        self.session.connection().execute(insert(_table(Object)), rows)
+        bulk_insert(self.session, "objects", (*keys, "extra", "created"),
+                    ((*(s.get(k) for k in keys), json.dumps(s.get("extra") or {}), now) for s in specs))
+        self._expire(Object)
         return self._object_ids(names)
 
     def _object_ids(self, names: Sequence[str]) -> dict[str, int]:
@@ -434,13 +436,14 @@ class Touches(_Part):
 
     def touch(self, object_id: int, agent_id: int, time: float) -> None:
         """Record that an agent interacted with an object at ``time`` (absolute store time)."""
-        self.add([(object_id, agent_id, time)])
+        self.add([object_id], [agent_id], [time])
 
-    def add(self, rows: Sequence[tuple[int, int, float]]) -> None:
-        """Many (object id, agent id, time) interactions at once (a pair given twice: the last)."""
-        if rows:
-            objects, agents, times = zip(*rows, strict=True)
-            write_packed(self.session, TOUCHES, objects, agents, {"times": np.asarray(times, dtype=float)})
+    def add(self, object_ids: Sequence[int], agent_ids: Sequence[int], times: Sequence[float]) -> None:
+        """Many interactions at once: agent_ids[k] with object_ids[k] at times[k] (absolute store
+        time; a pair given twice: the last)."""
+        if len(object_ids):
+            write_packed(self.session, TOUCHES, object_ids, agent_ids,
+                         {"times": np.asarray(times, dtype=float)})
             self._expire(Touch)
 
     def clear(self, object_ids: Sequence[int]) -> None:
