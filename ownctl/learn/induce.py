@@ -30,6 +30,8 @@ import numpy as np
 from ownctl.config import LearnConfig
 from ownctl.learn import exact
 from ownctl.learn.algebra import merge_rule, rule_diff, specialising
+from ownctl.learn.calibration import calibrated
+from ownctl.learn.calibration import candidates as calibration_candidates
 from ownctl.learn.evidence import MAX_NAMED_AGENTS, Evidence, Vocabulary
 from ownctl.learn.model import Model, model_for
 from ownctl.learn.search import rule_search
@@ -133,17 +135,24 @@ class Inducer:
             current = subtract(current, allow, self._merge)
         return current
 
-    def traced(self, given: Sequence[Rule], new: int) -> exact.Choice:
-        """The re-induction trace for the stored examples: certified from the trace of the same
-        examples without example ``new`` when one is known and the certificate holds, else computed."""
+    def traced(self, given: Sequence[Rule], new: int | None = None) -> exact.Choice:
+        """The re-induction trace for the stored examples: the memoised one if these very examples
+        were re-induced before; else certified from the trace of the same examples without example
+        ``new`` when one is known and the certificate holds; else computed."""
         canon, order, digests = exact.canonical_order(self.ev)
         truncated = self.ev.worlds.atoms if len(self.ev.frame.agents) > MAX_NAMED_AGENTS else None
         key = (self.action, tuple(given), tuple(self.atoms), truncated, self.model, self.cfg.max_conditions,
                MAX_RULES)
         full = (key, tuple(digests))
-        rest = (key, tuple(d for k, d in enumerate(digests) if order[k] != new))
+        known = _traces.get(full)
+        if known is not None:
+            _traces.move_to_end(full)
+            return known
+        earlier = None
+        if new is not None:
+            earlier = _traces.get((key, tuple(d for k, d in enumerate(digests) if order[k] != new)))
         trace = exact.reinduce(canon, self.action, given, self.atoms, self.model, self.cfg.max_conditions,
-                               MAX_RULES, _traces.get(rest), order.index(new))
+                               MAX_RULES, earlier, None if new is None else order.index(new))
         _traces[full] = trace
         _traces.move_to_end(full)
         while len(_traces) > TRACES:
@@ -183,6 +192,25 @@ class Inducer:
         return subtract(rules, result.rule if result.success else given, self._merge)
 
 
+def calibrated_inducer(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
+                       given: Sequence[Rule], new: int | None = None) -> tuple[Inducer, exact.Choice]:
+    """Ours: the inducer over ``ev`` read through the claim calibration under which the stored
+    permissions are most probable (:mod:`ownctl.learn.calibration`), and its re-induction trace
+    around the ``given`` rules. Each calibration's trace is certified from, and memoised beside,
+    the same calibration's trace without example ``new``; the objectives compared are those of
+    the examples in canonical order, so the choice depends only on the set of permissions."""
+    best: tuple[Inducer, exact.Choice, float] | None = None
+    for calibration in calibration_candidates(ev):
+        ind = Inducer(action, calibrated(ev, calibration), vocab, cfg)
+        choice = ind.traced(given, new)
+        run = choice.runs[choice.chosen]
+        assert run is not None
+        if best is None or run.objective < best[2]:
+            best = (ind, choice, run.objective)
+    assert best is not None
+    return best[0], best[1]
+
+
 def subtract(rules: Sequence[Rule], allow: Rule, merge=None) -> list[Rule]:  # type: ignore[no-untyped-def]
     """Every rule minus ``allow`` (rules disjoint from it are kept as they are)."""
     merge = merge or (lambda rs, r: merge_rule(rs, r))
@@ -218,8 +246,8 @@ def learn_permission(
     if cfg.learner == "ours":
         if ev.n == 0:
             return Outcome(tuple(rules), False, accuracy)
-        ind = Inducer(action, ev, vocab, cfg)
-        learned = tuple(ind.reinduce(given, allows, ind.traced(given, new)))
+        ind, trace = calibrated_inducer(action, ev, vocab, cfg, given, new)
+        learned = tuple(ind.reinduce(given, allows, trace))
         return Outcome(learned, learned != tuple(rules), accuracy)
     if accuracy >= cfg.accuracy_gate:
         return Outcome(tuple(rules), False, accuracy)
@@ -253,7 +281,8 @@ def learn_norm(
     if norm.sign == "forbid":
         if ind.ours:
             said = ind.cover_rule(stated, norm.rule)
-            current = ind.reinduce(said, allows)
+            best, trace = calibrated_inducer(norm.rule.action, ev, vocab, cfg, said)
+            current = best.reinduce(said, allows, trace)
             return Outcome(tuple(current), True, accuracy, tuple(specialising(said, current)))
         current = ind.cover_rule(list(rules), norm.rule)
         fresh = [r for r in current if r not in rules]

@@ -9,8 +9,11 @@ over rule sets (:mod:`ownctl.learn.posterior`):
   where ``N(l)`` is the number of such rules of ``l`` literals: each rule pays for being one more
   rule and for its length (and, with ``count_weight`` 1, for which of the rules of its length it is,
   a description-length prior). The defaults (1.5, 1.0, 0) were chosen on tuning norm families and Table 3.
+  Each negated literal costs ``negation_cost`` more (0.01: a tie-break between rules that say the
+  same on the examples, in favour of positive literals, which forbid fewer other objects).
 * **Likelihood.** Ownership atoms are independent per object, with the probabilities the caller
-  gives (claims or predictions); the instructor states what the rules imply, except with
+  gives (claims or predictions; the default learner reads them through the calibration of
+  :mod:`ownctl.learn.calibration` first); the instructor states what the rules imply, except with
   probability ``noise`` where the permission is the opposite: ``P(t_i = 1 | R) = noise + (1 - 2
   noise) q_i(R)`` with ``q_i(R)`` the exact probability that some rule holds for object ``i``.
   Objects are independent given the rules, so ``log P(t | R)`` is a sum over objects.
@@ -34,7 +37,7 @@ LABEL_NOISE = 0.003
 RULE_COST = 1.5
 LITERAL_COST = 1.0
 COUNT_WEIGHT = 0.0
-NEGATION_COST = 0.0
+NEGATION_COST = 0.01
 
 
 @dataclass(frozen=True)

@@ -31,7 +31,7 @@ import numpy as np
 
 from ownctl.config import LearnConfig
 from ownctl.learn.evidence import Evidence, Vocabulary
-from ownctl.learn.induce import subtract
+from ownctl.learn.induce import calibrated_inducer, subtract
 from ownctl.learn.model import Model, compatible, extensions, literal_list, model_for
 from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
@@ -290,7 +290,13 @@ def rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfi
                    size: int = POOL, max_rules: int = MAX_RULES, max_length: int = 3) -> RulePosterior:
     """The posterior over rule sets for one action's stored permissions ``ev`` (prior ownership),
     on a pool of the ``size`` best supported rules around the current learned ``rules`` (the given
-    norms are in every set). ``map()`` is then the most probable set of that space."""
+    norms are in every set). ``map()`` is then the most probable set of that space.
+
+    The examples are read through the claim calibration the learner chooses for them
+    (:func:`ownctl.learn.induce.calibrated_inducer`), so that the posterior and the learned rules
+    rest on the same model."""
+    if cfg.learner == "ours":
+        ev = calibrated_inducer(action, ev, vocab, cfg, tuple(given))[0].ev
     atoms = vocab.atoms()
     model = model_for(atoms, cfg.max_conditions)
     learned = [r for r in rules if r not in set(given)]
