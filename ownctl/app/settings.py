@@ -14,9 +14,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ownctl.config import DECIDE_RULES, LearnConfig, Settings
+from ownctl.config import LearnConfig, Settings
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.vocab import ACTIONS
+from ownctl.mind.core import decide_mode
 
 FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.prediction")
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
@@ -65,9 +66,9 @@ def parse_value(key: str, text: str) -> Any:
     if text == "default":
         return None
     if key == "decide.rules":
-        if text not in DECIDE_RULES:
-            raise BadValue(f"unknown decision mode {text!r}; valid: {', '.join(DECIDE_RULES)}", DECIDE_RULES)
-        return text
+        from ownctl.mind.core import decide_mode  # the Mind's modules only when this key is set
+
+        return decide_mode(text)
     if key == "ask.min_gain":
         return min_gain(text)
     if key == "learner":

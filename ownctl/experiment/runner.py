@@ -18,13 +18,13 @@ from typing import Any
 
 import numpy as np
 
-from ownctl.config import DECIDE_RULES
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.cluster import executor
 from ownctl.experiment.norms import WorldFactory
 from ownctl.experiment.registry import Experiment, get_experiment
 from ownctl.experiment.result import TrialResult
 from ownctl.experiment.summary import FAMILY_NOTE, ConditionSummary, summarise, summarise_families
+from ownctl.mind.core import decide_mode
 from ownctl.world.families import NormFamily
 
 Progress = Callable[[int, int], None]  # (trials done, trials in total)
@@ -146,8 +146,7 @@ def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None =
         raise BadValue(f"--jobs {jobs} and --scheduler {scheduler} are alternatives: give one of them")
     if scheduler is not None and not scheduler.strip():
         raise BadValue("--scheduler needs an address such as tcp://host:8786")
-    if decide not in DECIDE_RULES:
-        raise UnknownName("decision mode", decide, DECIDE_RULES)
+    decide_mode(decide)
 
 
 def run_trials(name: str, factories: Sequence[WorldFactory], learner: str, seed: int, units: Sequence[Unit],

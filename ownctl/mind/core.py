@@ -34,8 +34,8 @@ from typing import Any
 
 import numpy as np
 
-from ownctl.config import PredictConfig, Settings
-from ownctl.errors import DuplicateName, OwnctlError
+from ownctl.config import DECIDE_RULES, PredictConfig, Settings
+from ownctl.errors import DuplicateName, OwnctlError, UnknownName
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import Outcome, learn_norm, learn_permission
 from ownctl.learn.posterior import RulePosterior, rule_posterior
@@ -91,6 +91,14 @@ class RuleInfo:
 
     origin: str
     provenance: Mapping[str, Any] = field(default_factory=dict)
+
+
+def decide_mode(text: str) -> str:
+    """``text`` if it names a decision mode of :data:`~ownctl.config.DECIDE_RULES` (how learned
+    rules decide, :meth:`Mind.decide`); else the error listing them."""
+    if text not in DECIDE_RULES:
+        raise UnknownName("decision mode", text, DECIDE_RULES)
+    return text
 
 
 @dataclass(frozen=True)

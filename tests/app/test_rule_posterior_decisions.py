@@ -57,5 +57,5 @@ def test_posterior_decisions_marginalise_over_rule_sets(ctx: AppContext) -> None
     (step,) = [s for s in marginal["steps"] if s["action"] == "trash"]
     assert step["p_rules"] == pytest.approx(expected, abs=1e-12)
     assert on_map["steps"][-1]["p_rules"] != pytest.approx(step["p_rules"], abs=1e-6)
-    with pytest.raises(Exception, match="valid: map, posterior"):
+    with pytest.raises(Exception, match="known decision modes: map, posterior"):
         admin.config_set(ctx, "decide.rules", "mode")
