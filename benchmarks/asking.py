@@ -1,12 +1,15 @@
 """Benchmark: where the task experiment's mistakes come from, and what questions could save at best.
 
-    python benchmarks/asking.py [--trials 8] [--budget 4] [--kinds act,may,whose] [--hindsight] [--json]
+    python benchmarks/asking.py [--trials 8] [--budget 4] [--kinds act,may,whose] [--temper 0.5]
+        [--min-gain 0.05] [--hindsight] [--json]
 
 On the asking experiment's worlds (``ownctl experiment task --ask``: trial ``t`` of task ``c`` is
 the paper's blocks world drawn with ``[seed, c, t]``), for collectAll and trashAll:
 
 - **classes of mistakes**, with no question and with ``--budget`` questions of our strategy
-  (``--kinds``: the kinds it may ask, ``--min-gain``): each mistake is taken just before the robot
+  (``--kinds``: the kinds it may ask, ``--temper``: the power of the rule-set posteriors it values
+  them on, ``--min-gain``; the task asker's defaults; the strategy before them is ``--kinds
+  act,may,whose,rule --temper 1``): each mistake is taken just before the robot
   acts, with the beliefs it decides on. ``first``: no permission yet (no question may be asked
   before the first one); ``ownership``: its learned rules decide right on the object's true owners
   but the true norms decide wrong on its believed ownership (so the ownership belief is to blame);
@@ -16,7 +19,8 @@ the paper's blocks world drawn with ``[seed, c, t]``), for collectAll and trashA
   rules learned), the true norms stated before it (rules known, ownership learned), both;
 - ``--hindsight``: an upper bound on what a question strategy can save with ``--budget`` questions
   in this protocol: before each object, once the robot holds a permission, among the same
-  candidate questions as ours (``ownctl.mind.ask.candidates``) the one whose *true* answer leads to
+  candidate questions as ours (``ownctl.mind.ask.candidates`` of ``--kinds``, on the stated model's
+  posterior) the one whose *true* answer leads to
   the fewest actual mistakes over the rest of the task (the rest run on a fork of the Mind and a
   copy of the executor, no further question) is asked if it saves at least one, greedily. It reads
   the future, so no strategy that does not can do as well on average; it is slow (one run of the
@@ -41,7 +45,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from ownctl.config import LearnConfig, Settings  # noqa: E402
-from ownctl.experiment.asking import OracleAnswers, QuestionAsker  # noqa: E402
+from ownctl.experiment.asking import TASK_KINDS, TASK_TEMPER, OracleAnswers, QuestionAsker  # noqa: E402
 from ownctl.experiment.kinematic import KinematicExecutor  # noqa: E402
 from ownctl.experiment.online import TASK_CONDITIONS  # noqa: E402
 from ownctl.experiment.oracle import OracleInstructor  # noqa: E402
@@ -136,8 +140,8 @@ class Hindsight:
             self.asked.append(question)
 
 
-def run(c: int, t: int, seed: int, mode: str, budget: int, kinds: Sequence[str], min_gain: float
-        ) -> tuple[int, list[str]]:
+def run(c: int, t: int, seed: int, mode: str, budget: int, kinds: Sequence[str], min_gain: float,
+        temper: float = TASK_TEMPER) -> tuple[int, list[str]]:
     """(mistakes, their classes) of one trial: ``mode`` ours, own (owners known), rules (norms
     known), both, or hindsight."""
     task, world, mind = setup(c, t, seed)
@@ -152,7 +156,7 @@ def run(c: int, t: int, seed: int, mode: str, budget: int, kinds: Sequence[str],
     inner: Asker | None = None
     if mode == "ours" and budget:
         inner = QuestionAsker(steps, "ours", budget, min_gain, OracleAnswers(world),
-                              np.random.default_rng([seed, c, t, 1]), kinds=tuple(kinds))
+                              np.random.default_rng([seed, c, t, 1]), kinds=tuple(kinds), temper=temper)
     elif mode == "hindsight":
         inner = Hindsight(world, task, executor, budget, kinds)
     probe = Classifier(inner, world, steps)
@@ -173,7 +177,8 @@ def main() -> None:
     parser.add_argument("--trials", type=int, default=8)
     parser.add_argument("--seed", type=int, default=0)
     parser.add_argument("--budget", type=int, default=4)
-    parser.add_argument("--kinds", default=",".join(ALL_KINDS))
+    parser.add_argument("--kinds", default=",".join(TASK_KINDS))
+    parser.add_argument("--temper", type=float, default=TASK_TEMPER)
     parser.add_argument("--min-gain", type=float, default=0.05)
     parser.add_argument("--hindsight", action="store_true")
     parser.add_argument("--json", action="store_true")
@@ -188,12 +193,14 @@ def main() -> None:
         del modes[1]
     if args.hindsight:
         modes.append((f"hindsight, {args.budget} questions", "hindsight", args.budget))
+    if not 0 < args.temper <= 1:
+        parser.error(f"--temper must be in (0, 1], got {args.temper}")
     doc: dict[str, Any] = {"trials": args.trials, "seed": args.seed, "budget": args.budget,
-                           "kinds": kinds, "min_gain": args.min_gain, "tasks": {}}
+                           "kinds": kinds, "temper": args.temper, "min_gain": args.min_gain, "tasks": {}}
     for c, cond in enumerate(TASK_CONDITIONS):
         rows = {}
         for label, mode, budget in modes:
-            rows[label] = summary([run(c, t, args.seed, mode, budget, kinds, args.min_gain)
+            rows[label] = summary([run(c, t, args.seed, mode, budget, kinds, args.min_gain, args.temper)
                                    for t in range(args.trials)])
             if not args.json:
                 row = rows[label]
