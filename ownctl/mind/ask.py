@@ -75,7 +75,8 @@ class Question:
         """Deterministic order of questions of equal gain: kind (act, may, whose, rule), then the
         object's place in ``order`` (the task's objects: the one decided soonest first; objects not
         in it after them), then object name, action and rule text."""
-        place = list(order).index(self.object) if self.object in order else len(order)
+        names = list(order)
+        place = names.index(self.object) if self.object is not None and self.object in names else len(names)
         return (ALL_KINDS.index(self.kind), place, self.object or "", self.action or "",
                 self.rule.text() if self.rule else "")
 
