@@ -13,19 +13,24 @@ from typing import Any
 
 
 def run(budgets: str, trials: int, seed: int, jobs: int, task: str, plot_path: str | Path | None = None,
-        min_gain: float | None = None, progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+        min_gain: float | None = None, progress: Callable[[int, int], None] | None = None,
+        kinds: str | None = None, temper: float | None = None) -> dict[str, Any]:
     """The experiment's JSON document (and the plot, if asked for); trials and jobs are checked by
-    :func:`ownctl.experiment.asking.ask_experiment`, the plot's folder before any work."""
+    :func:`ownctl.experiment.asking.ask_experiment`, the plot's folder, ``kinds`` ("act,may,whose")
+    and ``temper`` (in (0, 1]; default: the task asker's) before any work."""
     from ownctl.app.experiment import check_folder, task_conditions
     from ownctl.app.settings import ASK_MIN_GAIN
     from ownctl.app.settings import min_gain as check_gain
-    from ownctl.experiment.asking import ask_experiment, parse_budgets
+    from ownctl.experiment.asking import TASK_KINDS, TASK_TEMPER, ask_experiment, parse_budgets, parse_kinds
+    from ownctl.mind.ask import check_temper
 
     chosen = parse_budgets(budgets)
     names = task_conditions(task) or ["collectAll", "trashAll"]
     check_folder("plot", plot_path)
     gain = ASK_MIN_GAIN if min_gain is None else check_gain(min_gain)
-    result = ask_experiment(chosen, trials, seed, jobs, names, gain, progress)
+    chosen_kinds = TASK_KINDS if kinds is None else parse_kinds(kinds)
+    power = TASK_TEMPER if temper is None else check_temper(temper)
+    result = ask_experiment(chosen, trials, seed, jobs, names, gain, progress, chosen_kinds, power)
     if plot_path is not None:
         from ownctl.app.experiment_plot import write_ask_plot
 

@@ -155,6 +155,14 @@ def task(
         "0,1,2,4,8), by value of information, by ownership entropy and at random, on the same seeds."
     )] = None,
     decide: DecideOpt = "map",
+    ask_kinds: Annotated[str | None, typer.Option(
+        "--ask-kinds", metavar="K,K,...", help="With --ask: the kinds of question ours may ask, of act, may, "
+        "whose, rule (default act,may,whose)."
+    )] = None,
+    ask_temper: Annotated[float | None, typer.Option(
+        "--ask-temper", metavar="T", help="With --ask: value ours' questions on the rule-set posterior "
+        "raised to the power T in (0, 1] (1: the model's own posterior; default 0.5)."
+    )] = None,
 ) -> None:
     """Table 3: collectAll and trashAll with a correcting instructor.
 
@@ -163,8 +171,14 @@ def task(
     if ask is not None:
         from ownctl.cli.experiment_ask_cmd import run_ask
 
-        run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet)
+        run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, ask_kinds,
+                ask_temper)
         return
+    for flag, value in (("--ask-kinds", ask_kinds), ("--ask-temper", ask_temper)):
+        if value is not None:
+            from ownctl.errors import BadValue
+
+            raise BadValue(f"{flag} applies only with --ask")
     _run("task", trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, scheduler=scheduler,
          decide=decide)
 

@@ -45,12 +45,25 @@ from ownctl.experiment.truth import TrueNorms
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.vocab import object_steps
 from ownctl.mind import Mind, Switches
-from ownctl.mind.ask import ALL_KINDS, Answer, Question, apply_answer, best_questions, candidates
+from ownctl.mind.ask import (
+    ALL_KINDS,
+    Answer,
+    Question,
+    apply_answer,
+    best_questions,
+    candidates,
+    check_temper,
+)
 from ownctl.world.generator import paper_blocks_world
 from ownctl.world.model import World
 
 STRATEGIES = ("ours", "entropy", "random")
 DEFAULT_MIN_GAIN = 0.05  # the ask.min_gain default (ownctl.app.settings.ASK_MIN_GAIN)
+#: what ``ours`` asks during a task (docs/asking.md, section 4): no rule questions, whose usual
+#: answer there, "partly", teaches nothing
+TASK_KINDS = ("act", "may", "whose")
+#: the power of the rule-set posteriors ``ours`` values questions on during a task (section 4)
+TASK_TEMPER = 0.5
 
 
 class OracleAnswers:
@@ -129,12 +142,15 @@ class QuestionAsker:
     min_gain: float = DEFAULT_MIN_GAIN
     answers: OracleAnswers | None = None
     rng: np.random.Generator | None = None
-    kinds: tuple[str, ...] = ALL_KINDS
+    kinds: tuple[str, ...] = TASK_KINDS
     taught: bool = False
+    temper: float = TASK_TEMPER
     asked: list[Asked] = field(default_factory=list)
 
     def __post_init__(self) -> None:
         check_strategy(self.strategy)
+        check_kinds(self.kinds)
+        check_temper(self.temper)
         if self.budget < 0:
             raise BadValue(f"the question budget must be at least 0, got {self.budget}")
 
@@ -144,9 +160,10 @@ class QuestionAsker:
             return None
         if self.strategy == "ours":
             seen = {a.question for a in self.asked}
-            pool = [q for q in candidates(mind, self.steps, remaining, self.kinds) if q not in seen]
+            pool = [q for q in candidates(mind, self.steps, remaining, self.kinds, temper=self.temper)
+                    if q not in seen]
             best = best_questions(mind, self.steps, remaining, top=1, questions=pool,
-                                  taught=self.taught)
+                                  taught=self.taught, temper=self.temper)
             if not best or best[0].gain < self.min_gain:
                 return None
             return best[0].question, best[0].gain
@@ -179,6 +196,21 @@ def check_strategy(strategy: str) -> str:
     return strategy
 
 
+def check_kinds(kinds: Sequence[str]) -> tuple[str, ...]:
+    """``kinds`` if each is a question kind and there is one; UnknownName or BadValue otherwise."""
+    for kind in kinds:
+        if kind not in ALL_KINDS:
+            raise UnknownName("question kind", kind, ALL_KINDS)
+    if not kinds:
+        raise BadValue(f"name at least one question kind of {', '.join(ALL_KINDS)}", ALL_KINDS)
+    return tuple(kinds)
+
+
+def parse_kinds(text: str) -> tuple[str, ...]:
+    """``"act,may,whose"`` as question kinds (duplicates dropped, order kept), checked."""
+    return check_kinds(tuple(dict.fromkeys(k.strip() for k in text.split(",") if k.strip())))
+
+
 # -- the experiment -------------------------------------------------------------------------------
 @dataclass(frozen=True)
 class Unit:
@@ -190,21 +222,36 @@ class Unit:
     budget: int
 
 
-def ask_run(unit: Unit, seed: int, min_gain: float = DEFAULT_MIN_GAIN, learner: str = "ours"
-            ) -> tuple[int, int]:
+@dataclass(frozen=True)
+class Policy:
+    """How ``ours`` asks in the experiment: the least gain worth a question, the kinds it may
+    ask, the power of the rule-set posteriors it values them on (docs/asking.md, section 4)."""
+
+    min_gain: float = DEFAULT_MIN_GAIN
+    kinds: tuple[str, ...] = TASK_KINDS
+    temper: float = TASK_TEMPER
+
+    def __post_init__(self) -> None:
+        check_kinds(self.kinds)
+        check_temper(self.temper)
+
+
+def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ours") -> tuple[int, int]:
     """(mistakes, questions asked) of one run; the world is Table 3's trial ``[seed, c, t]``."""
     cond = TASK_CONDITIONS[unit.condition]
     world = paper_blocks_world(np.random.default_rng([seed, unit.condition, unit.trial]))
     mind = Mind(world.agents, list(world.objects), world.areas, Settings(learn=LearnConfig(learner=learner)),
                 Switches())
-    asker = QuestionAsker(object_steps(get_task(cond.task).action), unit.strategy, unit.budget, min_gain,
-                          OracleAnswers(world), np.random.default_rng([seed, unit.condition, unit.trial, 1]))
+    asker = QuestionAsker(object_steps(get_task(cond.task).action), unit.strategy, unit.budget,
+                          policy.min_gain, OracleAnswers(world),
+                          np.random.default_rng([seed, unit.condition, unit.trial, 1]), policy.kinds,
+                          temper=policy.temper)
     report = run_task(mind, world, cond.task, KinematicExecutor(world), OracleInstructor(world), asker=asker)
     return report.mistakes, len(asker.asked)
 
 
-def _chunk(units: Sequence[Unit], seed: int, min_gain: float) -> list[tuple[Unit, tuple[int, int]]]:
-    return [(u, ask_run(u, seed, min_gain)) for u in units]
+def _chunk(units: Sequence[Unit], seed: int, policy: Policy) -> list[tuple[Unit, tuple[int, int]]]:
+    return [(u, ask_run(u, seed, policy)) for u in units]
 
 
 def mean_ci(values: Sequence[float]) -> tuple[float, float]:
@@ -229,7 +276,8 @@ def parse_budgets(text: str) -> tuple[int, ...]:
 
 def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int = 1,
                    tasks: Sequence[str] = ("collectAll", "trashAll"), min_gain: float = DEFAULT_MIN_GAIN,
-                   progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
+                   progress: Callable[[int, int], None] | None = None, kinds: Sequence[str] = TASK_KINDS,
+                   temper: float = TASK_TEMPER) -> dict[str, Any]:
     """Mistakes per task and questions asked for every strategy and budget, on the same seeds.
 
     Budget 0 is one run per trial shared by the strategies (Table 3 itself). Returns the JSON
@@ -237,6 +285,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     mean number of questions asked, and the paired difference ours - entropy per budget.
     """
     check_settings(trials, jobs, "ours")
+    policy = Policy(min_gain, tuple(kinds), temper)
     names = [c.name for c in TASK_CONDITIONS]
     conds = [names.index(t) for t in tasks]
     units = [Unit(c, t, s, b) for c in conds for t in range(trials) for b in budgets
@@ -245,13 +294,13 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     done: dict[Unit, tuple[int, int]] = {}
     if jobs == 1:
         for u in units:
-            done[u] = ask_run(u, seed, min_gain)
+            done[u] = ask_run(u, seed, policy)
             if progress:
                 progress(len(done), len(units))
     else:
         size = max(1, math.ceil(len(units) / (jobs * 4)))
         with ProcessPoolExecutor(max_workers=jobs) as pool:
-            futures = [pool.submit(_chunk, units[i : i + size], seed, min_gain)
+            futures = [pool.submit(_chunk, units[i : i + size], seed, policy)
                        for i in range(0, len(units), size)]
             for fut in futures:
                 done.update(dict(fut.result()))
@@ -281,6 +330,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
                            "better": sum(d < 0 for d in diff), "worse": sum(d > 0 for d in diff)})
         results.append({"task": names[c], "runs": rows, "paired": paired})
     return {"experiment": "task-ask", "trials": trials, "seed": seed, "jobs": jobs,
-            "budgets": list(budgets), "strategies": list(STRATEGIES), "min_gain": min_gain, "tasks": results,
+            "budgets": list(budgets), "strategies": list(STRATEGIES), "min_gain": min_gain,
+            "kinds": list(policy.kinds), "temper": policy.temper, "tasks": results,
             "world": "paper blocks world (Table 3's trials: budget 0 is Table 3)",
             "seconds": time.perf_counter() - start}

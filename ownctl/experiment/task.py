@@ -160,23 +160,38 @@ def run_task(
     """Run ``task`` over every object of ``mind`` (whose objects are the world's, in order);
     ``asker`` may ask questions before each attempt."""
     task = get_task(task) if isinstance(task, str) else task
-    target = area_named(mind.areas, task.area)
     truth = TrueNorms(world)
+    records = run_objects(mind, truth, task, executor, instructor, on_step=on_step, asker=asker)
+    return _report(mind, truth, task, object_steps(task.action), records)
+
+
+def run_objects(mind: Mind, truth: TrueNorms, task: Task, executor: Executor, instructor: Instructor,
+                start: int = 0, attempts: int | None = None,
+                on_step: Callable[[StepRecord], None] | None = None,
+                asker: Asker | None = None) -> list[StepRecord]:
+    """The task loop from object ``start`` on, stopped after ``attempts`` attempted objects (None:
+    to the end): one record per object visited (what :func:`run_task` reports on). A question's
+    look-ahead runs it on a fork of the Mind (docs/asking.md, section 4)."""
+    target = area_named(mind.areas, task.area)
     steps = object_steps(task.action)
     records: list[StepRecord] = []
-    for i in range(len(mind.objects)):
+    tried = 0
+    for i in range(start, len(mind.objects)):
         name = mind.objects[i].name
         if inside(target, mind.objects[i].position):
             record = StepRecord(i, name, "done", reason=f"already in {task.area}")
+        elif attempts is not None and tried >= attempts:
+            break
         else:
             if asker is not None:
                 asker.before(mind, i, remaining(mind, target, i))
             record = _attempt(mind, truth, task, steps, i, executor, instructor)
             _sync(mind, executor)
+            tried += 1
         records.append(record)
         if on_step is not None:
             on_step(record)
-    return _report(mind, truth, task, steps, records)
+    return records
 
 
 def remaining(mind: Mind, target: Area, start: int) -> list[int]:

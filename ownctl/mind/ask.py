@@ -17,12 +17,14 @@ ranks the candidates (docs/asking.md, sections 2-3).
 
 from __future__ import annotations
 
+import dataclasses
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TypeVar
 
 import numpy as np
 
+from ownctl.errors import BadValue
 from ownctl.learn.model import LABEL_NOISE
 from ownctl.learn.posterior import RulePosterior
 from ownctl.logic.frame import Frame
@@ -40,6 +42,7 @@ TOP_RULES = 2  # rules asked about per step: the most uncertain rules of its pos
 MAX_OWNER_AGENTS = 4  # owner sets of at most this many uncertain agents are enumerated
 SURE = 0.01  # an agent with posterior within SURE of 0 or 1 is taken as known in owner sets
 MIN_ANSWER = 1e-4  # answers less probable than this are dropped (the rest renormalised)
+EXACT = 1.0  # the temper of the stated model's own posterior (docs/asking.md, section 2)
 
 
 @dataclass(frozen=True)
@@ -68,10 +71,13 @@ class Question:
         return {"kind": self.kind, "object": self.object, "action": self.action,
                 "rule": self.rule.text() if self.rule else None, "text": self.text()}
 
-    def sort_key(self) -> tuple[int, str, str, str]:
-        """Deterministic order of questions of equal gain: kind (may, whose, rule), then object,
-        action and rule text."""
-        return (ALL_KINDS.index(self.kind), self.object or "", self.action or "",
+    def sort_key(self, order: Sequence[str] = ()) -> tuple[int, int, str, str, str]:
+        """Deterministic order of questions of equal gain: kind (act, may, whose, rule), then the
+        object's place in ``order`` (the task's objects: the one decided soonest first; objects not
+        in it after them), then object name, action and rule text."""
+        names = list(order)
+        place = names.index(self.object) if self.object is not None and self.object in names else len(names)
+        return (ALL_KINDS.index(self.kind), place, self.object or "", self.action or "",
                 self.rule.text() if self.rule else "")
 
 
@@ -169,6 +175,40 @@ def _named(posteriors: Sequence[RulePosterior]) -> tuple[str, ...]:
     return tuple(sorted({a for rp in posteriors for a in _layout(rp).named}))
 
 
+_TEMPERED: dict[tuple[int, float], tuple[RulePosterior, RulePosterior]] = {}
+
+
+def tempered(rp: RulePosterior, temper: float = EXACT) -> RulePosterior:
+    """``rp`` with its probabilities raised to the power ``temper`` and renormalised (a power
+    posterior, from the log weights): 1 is ``rp`` itself; below 1 the rule sets the examples
+    favour less keep more weight (docs/asking.md, section 4). Kept for the last few posteriors."""
+    if temper == EXACT:
+        return rp
+    key = (id(rp), float(temper))
+    hit = _TEMPERED.get(key)
+    if hit is not None and hit[0] is rp:
+        return hit[1]
+    w = rp.log_weights * temper
+    p = np.exp(w - w.max())
+    out = dataclasses.replace(rp, probabilities=p / p.sum())
+    if len(_TEMPERED) >= 64:
+        _TEMPERED.pop(next(iter(_TEMPERED)))
+    _TEMPERED[key] = (rp, out)
+    return out
+
+
+def check_temper(temper: float) -> float:
+    """``temper`` if it is in (0, 1]; BadValue naming it otherwise."""
+    if not 0.0 < temper <= 1.0:
+        raise BadValue(f"the temper of the rule-set posterior must be in (0, 1] (1: the stated model's "
+                       f"own posterior), got {temper!r}")
+    return temper
+
+
+def _posterior(mind: Mind, step: str, temper: float) -> RulePosterior:
+    return tempered(mind.rule_posterior(step), temper)
+
+
 def _set_table(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
     """(K, W, n) truth of each rule set of ``rp`` (minus its allow norms) in every world."""
     lay = _layout(rp)
@@ -216,13 +256,15 @@ def decisions(mind: Mind, steps: Sequence[str], idx: Sequence[int]) -> np.ndarra
     return out
 
 
-def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | str]) -> Expectation:
+def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
+                      temper: float = EXACT) -> Expectation:
     """The expected number of mistakes of deciding ``steps`` on ``objects`` on current beliefs.
 
     Truth per object: each step is forbidden by its permission's value when the object has one
     (the instructor said so), else by a rule set drawn from the step's posterior; ownership atoms are
     drawn from the posterior. P(forbidden) = 1 - E_w[prod_s (1 - f_s(w))], f_s(w) the step's
-    probability of being forbidden in ownership world w (docs/asking.md, section 1).
+    probability of being forbidden in ownership world w (docs/asking.md, section 1). ``temper``:
+    the rule-set posteriors' power (:func:`tempered`; 1, the default, is the stated model's).
     """
     idx = [mind.obj(o) for o in objects]
     names = tuple(mind.objects[i].name for i in idx)
@@ -233,7 +275,7 @@ def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | 
     worlds = worlds_for(mind, steps, frame)
     allowed = np.ones_like(worlds.weights)  # (W, n): P(no step forbidden | w)
     for s in steps:
-        f = step_forbidden(mind.rule_posterior(s), frame, worlds)
+        f = step_forbidden(_posterior(mind, s, temper), frame, worlds)
         for k, i in enumerate(idx):
             given = mind.permission(s, i)
             if given is not None:
@@ -278,17 +320,17 @@ def _normalised(items: Sequence[tuple[T, float]]) -> list[tuple[T, float]]:
     return [(a, p / z) for a, p in kept] if z > 0 else []
 
 
-def p_permission(mind: Mind, step: str, obj: int | str) -> float:
+def p_permission(mind: Mind, step: str, obj: int | str, temper: float = EXACT) -> float:
     """P(an instructor forbids ``step`` on the object): the posterior predictive P(forbidden),
     with the stated model's instructor noise."""
     i = mind.obj(obj)
     frame = mind.frame().take([i])
     worlds = worlds_for(mind, [step], frame)
-    q = float((worlds.weights * step_forbidden(mind.rule_posterior(step), frame, worlds)).sum())
+    q = float((worlds.weights * step_forbidden(_posterior(mind, step, temper), frame, worlds)).sum())
     return LABEL_NOISE + (1 - 2 * LABEL_NOISE) * min(max(q, 0.0), 1.0)
 
 
-def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str
+def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str, temper: float = EXACT
                                 ) -> list[tuple[tuple[str, ...], float]]:
     """P(each set of forbidden steps) for "may I ACTION OBJ?" answered step by step: the steps
     share the object's ownership worlds, their rule sets are independent given them, and each
@@ -298,7 +340,7 @@ def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str
     frame = mind.frame().take([i])
     worlds = worlds_for(mind, steps, frame)
     g = [LABEL_NOISE + (1 - 2 * LABEL_NOISE)
-         * np.clip(step_forbidden(mind.rule_posterior(s), frame, worlds)[:, 0], 0.0, 1.0) for s in steps]
+         * np.clip(step_forbidden(_posterior(mind, s, temper), frame, worlds)[:, 0], 0.0, 1.0) for s in steps]
     out = []
     for bits in range(2 ** len(steps)):
         chosen = tuple(s for k, s in enumerate(steps) if bits >> k & 1)
@@ -309,12 +351,12 @@ def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str
     return out
 
 
-def rule_answer_probabilities(mind: Mind, rule: Rule) -> dict[str, float]:
+def rule_answer_probabilities(mind: Mind, rule: Rule, temper: float = EXACT) -> dict[str, float]:
     """P(yes), P(no), P(partly) for "does RULE hold?" on the Mind's objects: yes when every object
     the rule describes is forbidden, no when none is, partly otherwise (rule sets from the action's
     posterior, ownership atoms independent per object)."""
     frame = mind.frame()
-    rp = mind.rule_posterior(rule.action)
+    rp = _posterior(mind, rule.action, temper)
     named, _ = relevant_atoms([[rule], *rp.sets, rp.allows])
     worlds = enumerate_worlds(frame, named, with_other=True)
     table = _set_table(rp, frame, worlds)  # (K, W, n)
@@ -329,21 +371,23 @@ def rule_answer_probabilities(mind: Mind, rule: Rule) -> dict[str, float]:
     return {"yes": p_yes, "no": p_no, "partly": max(0.0, 1.0 - p_yes - p_no)}
 
 
-def answers(mind: Mind, question: Question) -> list[tuple[Answer, float]]:
-    """The possible answers to ``question`` with their predicted probabilities (summing to 1)."""
+def answers(mind: Mind, question: Question, temper: float = EXACT) -> list[tuple[Answer, float]]:
+    """The possible answers to ``question`` with their predicted probabilities (summing to 1);
+    ``temper``: the rule-set posteriors' power (:func:`tempered`)."""
     if question.kind == "whose":
         assert question.object is not None
         return [(Answer(question, owners=o), p) for o, p in owner_sets(mind, question.object)]
     if question.kind == "may":
         assert question.object is not None and question.action is not None
-        p = p_permission(mind, question.action, question.object)
+        p = p_permission(mind, question.action, question.object, temper)
         return _normalised([(Answer(question, forbid=True), p), (Answer(question, forbid=False), 1 - p)])
     if question.kind == "act":
         assert question.object is not None
         return _normalised([(Answer(question, forbids=b), p)
-                            for b, p in action_answer_probabilities(mind, question.steps, question.object)])
+                            for b, p in action_answer_probabilities(mind, question.steps, question.object,
+                                                                    temper)])
     assert question.rule is not None
-    probs = rule_answer_probabilities(mind, question.rule)
+    probs = rule_answer_probabilities(mind, question.rule, temper)
     return _normalised([(Answer(question, holds=h), probs[h]) for h in HOLDS])
 
 
@@ -370,28 +414,31 @@ def apply_answer(mind: Mind, answer: Answer, speaker: str | None = None) -> None
 
 
 def value_of_information(mind: Mind, question: Question, steps: Sequence[str],
-                         objects: Sequence[int | str], before: float | None = None) -> Scored:
-    """EM(now) - sum over answers of P(answer) EM(after teaching the answer to a fork of ``mind``)."""
-    now = expected_mistakes(mind, steps, objects).total if before is None else before
+                         objects: Sequence[int | str], before: float | None = None,
+                         temper: float = EXACT) -> Scored:
+    """EM(now) - sum over answers of P(answer) EM(after teaching the answer to a fork of ``mind``),
+    answers and mistakes on the rule-set posteriors raised to ``temper`` (1: the stated model's)."""
+    now = expected_mistakes(mind, steps, objects, temper).total if before is None else before
     rows = []
-    for answer, p in answers(mind, question):
+    for answer, p in answers(mind, question, temper):
         fork = mind.fork()
         apply_answer(fork, answer)
-        rows.append((answer, p, expected_mistakes(fork, steps, objects).total))
+        rows.append((answer, p, expected_mistakes(fork, steps, objects, temper).total))
     after = sum(p * em for _, p, em in rows)
     return Scored(question, now - after, now, tuple(rows))
 
 
 def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
                kinds: Sequence[str] = KINDS, top_objects: int = TOP_OBJECTS,
-               top_rules: int = TOP_RULES, action: str | None = None) -> list[Question]:
+               top_rules: int = TOP_RULES, action: str | None = None, temper: float = EXACT
+               ) -> list[Question]:
     """The questions worth scoring (docs/asking.md, section 3), on the first object of ``objects``
     (the one about to be acted on) and the ``top_objects`` objects whose decisions are most likely
     wrong (ties: task order): ``may`` for each step without a permission, ``act`` (``action``,
     default the last step) over those steps when there are two or more, and ``whose``; and
     ``rule`` on the ``top_rules`` rules of each step's posterior whose probability is nearest 1/2
-    (not yet stated, not certain)."""
-    exp = expected_mistakes(mind, steps, objects)
+    (not yet stated, not certain); probabilities on the rule-set posteriors raised to ``temper``."""
+    exp = expected_mistakes(mind, steps, objects, temper)
     order = sorted(range(len(exp.objects)), key=lambda k: (-round(float(exp.p_wrong[k]), 12), k))
     top = [exp.objects[k] for k in order[:top_objects] if exp.p_wrong[k] > 0]
     chosen = list(dict.fromkeys([*exp.objects[:1], *top]))
@@ -407,7 +454,7 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
     if "rule" in kinds:
         for s in steps:
             given = set(mind.given(s))
-            probs = [(r, p) for r, p in mind.rule_posterior(s).rule_probabilities().items()
+            probs = [(r, p) for r, p in _posterior(mind, s, temper).rule_probabilities().items()
                      if r not in given and 0.01 < p < 0.99]
             probs.sort(key=lambda rp: (abs(rp[1] - 0.5), len(rp[0].literals), rp[0].text()))
             out += [Question("rule", action=s, rule=r) for r, _ in probs[:top_rules]]
@@ -428,24 +475,28 @@ def horizon(question: Question, names: Sequence[str]) -> int:
 
 def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], top: int = 3,
                    kinds: Sequence[str] = KINDS, questions: Sequence[Question] | None = None,
-                   taught: bool = False) -> list[Scored]:
+                   taught: bool = False, temper: float = EXACT) -> list[Scored]:
     """The ``top`` questions of largest value of information, best first; equal gains (to 1e-9) in
-    :meth:`Question.sort_key` order. ``taught``: the objects' permissions will be taught as each is
-    attempted, so a permission question's value counts only the decisions up to its object
-    (:func:`horizon`)."""
-    pool = candidates(mind, steps, objects, kinds) if questions is None else list(questions)
+    :meth:`Question.sort_key` order over ``objects``' order. ``taught``: the objects' permissions
+    will be taught as each is attempted, so a permission question's value counts only the
+    decisions up to its object (:func:`horizon`). ``temper``: value on the rule-set posteriors
+    raised to that power (:func:`tempered`; 1 is the stated model's posterior, exact)."""
+    check_temper(temper)
+    pool = candidates(mind, steps, objects, kinds, temper=temper) if questions is None else list(questions)
     objs = list(objects)
+    names = [mind.objects[mind.obj(o)].name for o in objs]
     if not taught:
-        before = expected_mistakes(mind, steps, objs).total
-        scored = [value_of_information(mind, q, steps, objs, before) for q in pool]
+        before = expected_mistakes(mind, steps, objs, temper).total
+        scored = [value_of_information(mind, q, steps, objs, before, temper) for q in pool]
     else:
-        names = [mind.objects[mind.obj(o)].name for o in objs]
-        scored = [value_of_information(mind, q, steps, objs[: horizon(q, names)]) for q in pool]
-    scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key()))
+        scored = [value_of_information(mind, q, steps, objs[: horizon(q, names)], temper=temper)
+                  for q in pool]
+    scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key(names)))
     return scored[:top]
 
 
 __all__ = ["ALL_KINDS", "HOLDS", "KINDS", "OTHER", "Answer", "Expectation", "Question", "Scored",
            "action_answer_probabilities", "answers", "apply_answer", "best_questions", "candidates",
-           "decisions", "expected_mistakes", "horizon", "owner_sets", "p_permission",
-           "rule_answer_probabilities", "step_forbidden", "worlds_for", "value_of_information"]
+           "check_temper", "decisions", "expected_mistakes", "horizon", "owner_sets", "p_permission",
+           "rule_answer_probabilities", "step_forbidden", "tempered", "worlds_for",
+           "value_of_information"]

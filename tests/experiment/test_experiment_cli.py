@@ -69,6 +69,10 @@ def test_quiet_prints_nothing() -> None:
         (["norms", "--jobs", "0"], "jobs must be at least 1"),
         (["task", "--task", "tidyAll"], "unknown task 'tidyAll'"),
         (["ownership", "--world", "no/such/world.toml"], "does not exist"),
+        (["task", "--ask-temper", "0.5"], "--ask-temper applies only with --ask"),
+        (["task", "--ask", "1", "--ask-temper", "0"], "must be in (0, 1]"),
+        (["task", "--ask", "1", "--ask-kinds", "act,why"],
+         "unknown question kind 'why'; known question kinds: act, may, rule, whose"),
     ],
 )
 def test_bad_input_is_one_line_and_exit_1(args: list[str], message: str) -> None:

@@ -15,6 +15,7 @@ import math
 import numpy as np
 import pytest
 
+from ownctl.errors import BadValue
 from ownctl.experiment.kinematic import KinematicExecutor
 from ownctl.experiment.student import t_quantile
 from ownctl.experiment.task import SilentInstructor, run_task
@@ -34,6 +35,7 @@ from ownctl.mind.ask import (
     owner_sets,
     rule_answer_probabilities,
     step_forbidden,
+    tempered,
     value_of_information,
     worlds_for,
 )
@@ -97,18 +99,27 @@ def owner_worlds(p: np.ndarray) -> list[tuple[frozenset[str], float]]:
     return out
 
 
-def brute_forbidden(mind: Mind, step: str, i: int, owners: frozenset[str]) -> float:
+def set_probabilities(mind: Mind, step: str, temper: float = 1.0) -> np.ndarray:
+    """The step's rule-set probabilities, raised to ``temper`` from the log weights by hand."""
+    rp = mind.rule_posterior(step)
+    if temper == 1.0:
+        return rp.probabilities
+    w = np.exp(temper * (rp.log_weights - rp.log_weights.max()))
+    return w / w.sum()
+
+
+def brute_forbidden(mind: Mind, step: str, i: int, owners: frozenset[str], temper: float = 1.0) -> float:
     """P(step forbidden on object i | its owner set), summing the step's rule sets one by one."""
     rp = mind.rule_posterior(step)
     fact = facts(mind, i)
     total = 0.0
-    for rules, p in zip(rp.sets, rp.probabilities, strict=True):
+    for rules, p in zip(rp.sets, set_probabilities(mind, step, temper), strict=True):
         if any(holds(r, owners, fact) for r in rules) and not any(holds(a, owners, fact) for a in rp.allows):
             total += float(p)
     return total
 
 
-def brute_em(mind: Mind, objects: list[int]) -> float:
+def brute_em(mind: Mind, objects: list[int], temper: float = 1.0) -> float:
     """Expected mistakes by listing, per object, every owner set and every step's rule sets."""
     post = mind.posterior()
     total = 0.0
@@ -118,7 +129,7 @@ def brute_em(mind: Mind, objects: list[int]) -> float:
             none = 1.0
             for s in STEPS:
                 given = mind.permission(s, i)
-                f = given.value if given is not None else brute_forbidden(mind, s, i, owners)
+                f = given.value if given is not None else brute_forbidden(mind, s, i, owners, temper)
                 none *= 1 - f
             p_forb += w * (1 - none)
         refused, _ = mind.decide("trash", i, STEPS)
@@ -144,7 +155,7 @@ def test_a_step_marginal_equals_the_posterior_predictive() -> None:
         assert np.allclose(marginal, mind.rule_posterior(s).p_forbidden(frame), atol=1e-12)
 
 
-def brute_answers(mind: Mind, q: Question) -> list[tuple[Answer, float]]:
+def brute_answers(mind: Mind, q: Question, temper: float = 1.0) -> list[tuple[Answer, float]]:
     """The answers' probabilities by plain enumeration."""
     post = mind.posterior()
     if q.kind == "whose":
@@ -152,16 +163,16 @@ def brute_answers(mind: Mind, q: Question) -> list[tuple[Answer, float]]:
         return [(Answer(q, owners=tuple(sorted(o))), w) for o, w in owner_worlds(post[i])]
     if q.kind == "may":
         i = mind.obj(q.object)
-        f = sum(w * brute_forbidden(mind, q.action, i, o) for o, w in owner_worlds(post[i]))
+        f = sum(w * brute_forbidden(mind, q.action, i, o, temper) for o, w in owner_worlds(post[i]))
         p = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * f
         return [(Answer(q, forbid=True), p), (Answer(q, forbid=False), 1 - p)]
     if q.kind == "act":
-        return brute_action_answers(mind, q)
-    probs = brute_rule_answers(mind, q.rule)
+        return brute_action_answers(mind, q, temper)
+    probs = brute_rule_answers(mind, q.rule, temper)
     return [(Answer(q, holds=h), p) for h, p in probs.items()]
 
 
-def brute_action_answers(mind: Mind, q: Question) -> list[tuple[Answer, float]]:
+def brute_action_answers(mind: Mind, q: Question, temper: float = 1.0) -> list[tuple[Answer, float]]:
     """P(each set of forbidden steps): every owner set of the object, each step's answer true with
     its probability under that owner set and flipped with the instructor noise."""
     i = mind.obj(q.object)
@@ -171,14 +182,14 @@ def brute_action_answers(mind: Mind, q: Question) -> list[tuple[Answer, float]]:
         total = 0.0
         for owners, w in owner_worlds(post[i]):
             for s, b in zip(q.steps, bits, strict=True):
-                g = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * brute_forbidden(mind, s, i, owners)
+                g = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * brute_forbidden(mind, s, i, owners, temper)
                 w *= g if b else 1 - g
             total += w
         out.append((Answer(q, forbids=tuple(s for s, b in zip(q.steps, bits, strict=True) if b)), total))
     return out
 
 
-def brute_rule_answers(mind: Mind, rule: Rule) -> dict[str, float]:
+def brute_rule_answers(mind: Mind, rule: Rule, temper: float = 1.0) -> dict[str, float]:
     """P(yes/no/partly) over every rule set and every joint owner assignment of all objects."""
     rp = mind.rule_posterior(rule.action)
     post = mind.posterior()
@@ -186,7 +197,7 @@ def brute_rule_answers(mind: Mind, rule: Rule) -> dict[str, float]:
     per = [owner_worlds(post[i]) for i in range(n)]
     fact = [facts(mind, i) for i in range(n)]
     out = {"yes": 0.0, "no": 0.0, "partly": 0.0}
-    for rules, p in zip(rp.sets, rp.probabilities, strict=True):
+    for rules, p in zip(rp.sets, set_probabilities(mind, rule.action, temper), strict=True):
         if p < 1e-15:
             continue
         for combo in itertools.product(*per):
@@ -204,19 +215,20 @@ QUESTIONS = {"whose": Question("whose", "o1"), "may": Question("may", "o2", "pic
              "rule": Question("rule", action="trash", rule=parse_norm("forbid trash if isColored red").rule)}
 
 
-@pytest.mark.parametrize(("seed", "kind"), [
-    (0, "may"), (0, "whose"),
-    *[pytest.param(s, k, marks=pytest.mark.slow) for s, k in
-      [(1, "act"), (0, "rule"), (0, "act"), (2, "act"), (1, "may"), (1, "whose"), (1, "rule"), (2, "may"),
-       (2, "whose"), (2, "rule")]],
+@pytest.mark.parametrize(("seed", "kind", "temper"), [
+    (0, "may", 1.0), (0, "whose", 1.0),
+    *[pytest.param(s, k, t, marks=pytest.mark.slow) for s, k, t in
+      [(0, "may", 0.5), (1, "act", 1.0), (0, "rule", 1.0), (0, "act", 1.0), (2, "act", 1.0), (1, "may", 1.0),
+       (1, "whose", 1.0), (1, "rule", 1.0), (2, "may", 1.0), (2, "whose", 1.0), (2, "rule", 1.0),
+       (1, "act", 0.5), (1, "whose", 0.3), (2, "rule", 0.5)]],
 ])
-def test_value_of_information_equals_brute_force(seed: int, kind: str) -> None:
+def test_value_of_information_equals_brute_force(seed: int, kind: str, temper: float) -> None:
     mind = small_mind(seed, n=3)
     objects = list(range(3))
-    before = brute_em(mind, objects)
+    before = brute_em(mind, objects, temper)
     for q in [QUESTIONS[kind]]:
-        scored = value_of_information(mind, q, STEPS, objects)
-        brute = brute_answers(mind, q)
+        scored = value_of_information(mind, q, STEPS, objects, temper=temper)
+        brute = brute_answers(mind, q, temper)
         if q.kind in ("whose", "act"):
             brute = [(a, p) for a, p in brute if p >= 1e-4]
         z = sum(p for _, p in brute)
@@ -224,7 +236,7 @@ def test_value_of_information_equals_brute_force(seed: int, kind: str) -> None:
         for a, p in brute:
             fork = mind.fork()
             apply_answer(fork, a)
-            after += p / z * brute_em(fork, objects)
+            after += p / z * brute_em(fork, objects, temper)
         assert scored.before == pytest.approx(before, abs=1e-9)
         assert scored.gain == pytest.approx(before - after, abs=1e-9), q.text()
         assert sum(p for _, p, _ in scored.answers) == pytest.approx(1.0)
@@ -339,8 +351,37 @@ def test_best_questions_are_ranked_and_ties_ordered() -> None:
     objects = list(range(len(mind.objects)))
     ranked = best_questions(mind, STEPS, objects, top=50)
     assert len(ranked) == len(candidates(mind, STEPS, objects))
-    keys = [(-round(s.gain, 9), s.question.sort_key()) for s in ranked]
+    names = [mind.objects[i].name for i in objects]
+    keys = [(-round(s.gain, 9), s.question.sort_key(names)) for s in ranked]
     assert keys == sorted(keys)
+
+
+def test_equal_gains_are_ordered_by_kind_then_task_order() -> None:
+    names = ["o10", "o2", "o1"]
+    qs = [Question("whose", "o1"), Question("may", "o1", "trash"), Question("may", "o2", "trash"),
+          Question("may", "o10", "trash"), Question("rule", action="trash",
+                                                    rule=parse_norm("forbid trash if isColored red").rule)]
+    got = sorted(qs, key=lambda q: q.sort_key(names))
+    assert [(q.kind, q.object) for q in got] == [("may", "o10"), ("may", "o2"), ("may", "o1"),
+                                                 ("whose", "o1"), ("rule", None)]
+
+
+def test_a_tempered_posterior_is_the_power_posterior() -> None:
+    mind = small_mind(1)
+    rp = mind.rule_posterior("trash")
+    assert tempered(rp, 1.0) is rp
+    for t in (0.7, 0.3):
+        got = tempered(rp, t).probabilities
+        assert got == pytest.approx(set_probabilities(mind, "trash", t), abs=1e-12)
+        assert got.sum() == pytest.approx(1.0)
+        entropy = [-(p[p > 0] * np.log(p[p > 0])).sum() for p in (rp.probabilities, got)]
+        assert entropy[1] > entropy[0]  # flatter: the sets the examples favour less keep more weight
+    objects = list(range(len(mind.objects)))
+    assert expected_mistakes(mind, STEPS, objects, 0.5).total == pytest.approx(brute_em(mind, objects, 0.5),
+                                                                               abs=1e-9)
+    for bad in (0.0, -1.0, 1.5):
+        with pytest.raises(BadValue, match=r"\(0, 1\]"):
+            best_questions(mind, STEPS, objects, temper=bad)
 
 
 def draw_world(mind: Mind, rng: np.random.Generator) -> World:

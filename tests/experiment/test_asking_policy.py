@@ -1,0 +1,70 @@
+"""The task asker's policy (``ownctl.experiment.asking``): question kinds and the tempered rule-set
+posterior it values questions on, and the task loop run from an object on (docs/asking.md, section 4)."""
+
+from __future__ import annotations
+
+import copy
+
+import numpy as np
+import pytest
+
+from ownctl.errors import BadValue, UnknownName
+from ownctl.experiment.asking import TASK_KINDS, OracleAnswers, Policy, QuestionAsker, parse_kinds
+from ownctl.experiment.kinematic import KinematicExecutor
+from ownctl.experiment.oracle import OracleInstructor
+from ownctl.experiment.task import get_task, run_objects, run_task
+from ownctl.experiment.truth import TrueNorms
+from ownctl.logic.vocab import object_steps
+from ownctl.mind import Mind
+from ownctl.mind.ask import best_questions, candidates, value_of_information
+from ownctl.world.generator import paper_blocks_world
+
+STEPS = object_steps("trash")
+
+
+def test_kinds_are_parsed_and_checked() -> None:
+    assert parse_kinds(" act, whose ,act") == ("act", "whose")
+    assert "rule" not in TASK_KINDS and Policy().kinds == TASK_KINDS
+    with pytest.raises(UnknownName, match="unknown question kind 'why'"):
+        parse_kinds("act,why")
+    with pytest.raises(BadValue, match="at least one question kind"):
+        parse_kinds(" , ")
+    with pytest.raises(BadValue, match=r"\(0, 1\]"):
+        QuestionAsker(STEPS, temper=0.0)
+    with pytest.raises(UnknownName, match="question kind"):
+        Policy(kinds=("whence",))
+
+
+@pytest.mark.slow
+def test_the_task_loop_resumes_from_any_object_as_if_never_stopped() -> None:
+    world = paper_blocks_world(np.random.default_rng([3, 1, 0]))
+    whole = Mind(world.agents, list(world.objects), world.areas)
+    full = run_task(whole, world, "trashAll", KinematicExecutor(world), OracleInstructor(world)).records
+    mind = Mind(world.agents, list(world.objects), world.areas)
+    truth, task, executor = TrueNorms(world), get_task("trashAll"), KinematicExecutor(world)
+    head = run_objects(mind, truth, task, executor, OracleInstructor(world), attempts=4)
+    assert sum(r.outcome != "done" for r in head) == 4
+    ahead = run_objects(mind.fork(), truth, task, copy.deepcopy(executor), OracleInstructor(world),
+                        start=len(head))  # a look-ahead on a fork leaves the run as it was
+    tail = run_objects(mind, truth, task, executor, OracleInstructor(world), start=len(head))
+    assert [*head, *tail] == list(full)
+    assert ahead == tail
+
+
+@pytest.mark.slow
+def test_ours_asks_the_best_question_on_the_tempered_posterior() -> None:
+    world = paper_blocks_world(np.random.default_rng([0, 1, 2]))
+    mind = Mind(world.agents, list(world.objects), world.areas)
+    mind.permit("trash", 0, 0.0)
+    mind.permit("pickUp", 0, 0.0)
+    remaining = list(range(1, 5))
+    asker = QuestionAsker(STEPS, "ours", budget=1, min_gain=0.0, answers=OracleAnswers(world), temper=0.5)
+    pool = candidates(mind, STEPS, remaining, TASK_KINDS, temper=0.5)
+    assert all(q.kind in TASK_KINDS for q in pool)
+    want = best_questions(mind, STEPS, remaining, top=1, questions=pool, temper=0.5)[0]
+    exact = best_questions(mind, STEPS, remaining, top=1, questions=pool)[0]
+    assert want.gain == pytest.approx(value_of_information(mind, want.question, STEPS, remaining,
+                                                           temper=0.5).gain, abs=1e-12)
+    assert want.before != pytest.approx(exact.before)  # the tempered posterior expects other mistakes
+    asker.before(mind, 1, remaining)
+    assert [a.question for a in asker.asked] == [want.question]
