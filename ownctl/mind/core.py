@@ -43,7 +43,7 @@ from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import Norm, Rule
 from ownctl.logic.vocab import ACTIONS
-from ownctl.ownership.features import percept_features, recency_feature
+from ownctl.ownership.features import agent_features, percept_features
 from ownctl.ownership.infer import posterior
 from ownctl.ownership.predict import KernelOwnershipModel, calibrated_base_rate
 from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
@@ -352,7 +352,8 @@ class Mind:
         times = seen.touch_times(agent)
         ages = np.maximum(0.0, self.now - times)  # NaN (never touched) stays NaN
         cfg = self.settings.predict
-        X = np.hstack([seen.shared_features(self.vocab.colors, cfg), recency_feature(ages, cfg)])
+        X = agent_features(seen.positions, seen.colors, ages, self.vocab.colors, cfg,
+                           shared=seen.shared_features(self.vocab.colors, cfg))
         return X, ~np.isnan(self.claims[:, j])
 
     def _predict(self, j: int) -> None:

@@ -68,12 +68,14 @@ def agent_features(
     ages: np.ndarray,
     palette: Sequence[str | None],
     cfg: PredictConfig,
+    shared: np.ndarray | None = None,
 ) -> np.ndarray:
     """(n, d) weighted features for one agent: standardised xyz, colour one-hot, standardised log-recency.
 
     ``positions`` (n, 3) may hold NaN (unknown position: placed at the mean position); ``ages`` (n,)
     may hold NaN (never touched: ``NEVER_AGE``). The squared Euclidean distance between rows is the
-    kernel's distance. The first two parts are :func:`percept_features`, the last
-    :func:`recency_feature`.
+    kernel's distance. The first two parts are :func:`percept_features` (``shared``, when the
+    caller kept them for these percepts), the last :func:`recency_feature`.
     """
-    return np.hstack([percept_features(positions, colors, palette, cfg), recency_feature(ages, cfg)])
+    common = percept_features(positions, colors, palette, cfg) if shared is None else shared
+    return np.hstack([common, recency_feature(ages, cfg)])

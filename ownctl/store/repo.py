@@ -32,15 +32,12 @@ from ownctl.store.models import (
     Object,
     Ownership,
     Permission,
-    Prior,
     RuleRow,
     Setting,
-    Touch,
     TruthNorm,
     TruthOwner,
 )
 
-BELIEF_KINDS = ("claim", "prior", "posterior")
 CHUNK = 900  # ids per IN (...) clause, below SQLite's default limit on bound parameters
 BATCH = 100_000  # rows per executemany of a bulk insert
 
@@ -170,6 +167,9 @@ def write_packed(session: Session, table: PackedTable, object_ids: Sequence[int]
            f"WHERE agent_id IN ({', '.join(str(a) for a in sorted({a for a, _ in keys}))}) "
            f"AND chunk IN ({', '.join(str(c) for c in sorted({c for _, c in keys}))})")
     stored = {(int(a), int(c)): data for a, c, *data in conn.exec_driver_sql(sql)}
+    missing = sorted(set(table.scalars) - set(scalars or {}))
+    if missing:
+        raise ValueError(f"writing {table.name} needs a value for {', '.join(missing)}")
     extra = [scalars[c] for c in table.scalars] if scalars else []
     rows: list[tuple[Any, ...]] = []
     for k, part in zip(keys, parts, strict=True):
@@ -186,6 +186,18 @@ def write_packed(session: Session, table: PackedTable, object_ids: Sequence[int]
         conn.exec_driver_sql(f"DELETE FROM {table.name} WHERE agent_id = {mark.format('a')} "
                              f"AND chunk = {mark.format('c')}", old)
     bulk_insert(session, table.name, ("agent_id", "chunk", *names, *table.scalars), rows)
+
+
+def clear_packed(session: Session, table: PackedTable, object_ids: Sequence[int],
+                 agent_ids: Sequence[int]) -> None:
+    """Empty the cells of ``object_ids`` x ``agent_ids`` in every array column of ``table``
+    (objects being removed: their ids may be given to new objects)."""
+    objects = np.repeat(np.asarray(object_ids, dtype=np.int64), len(agent_ids))
+    if len(objects):
+        agents = np.tile(np.asarray(agent_ids, dtype=np.int64), len(object_ids))
+        write_packed(session, table, objects, agents,
+                     {c: np.full(len(objects), np.nan) if t.kind == "f" else np.zeros(len(objects), dtype=t)
+                      for c, t in table.arrays}, {c: 0.0 for c in table.scalars})
 
 
 @dataclass(frozen=True)
@@ -319,7 +331,6 @@ class Things(_Part):
         keys = ("name", "color", "x", "y", "z")
         bulk_insert(self.session, "objects", (*keys, "extra", "created"),
                     ((*(s.get(k) for k in keys), json.dumps(s.get("extra") or {}), now) for s in specs))
-        self._expire(Object)
         return self._object_ids(names)
 
     def _object_ids(self, names: Sequence[str]) -> dict[str, int]:
@@ -337,8 +348,9 @@ class Things(_Part):
     def remove_objects(self, object_ids: Sequence[int]) -> None:
         """Forget objects (their beliefs, touches, categories and permissions cascade)."""
         ids = list(object_ids)
-        self.tx.beliefs.clear_priors(ids)
-        self.tx.touches.clear(ids)
+        agents = [a.id for a in self.tx.world.agents()]
+        for packed in (PRIORS, TOUCHES):  # packed per agent: no cascade reaches them
+            clear_packed(self.session, packed, ids, agents)
         for start in range(0, len(ids), CHUNK):
             chunk = ids[start : start + CHUNK]
             for table in (Ownership, Category, Permission, TruthOwner):
@@ -444,16 +456,6 @@ class Touches(_Part):
         if len(object_ids):
             write_packed(self.session, TOUCHES, object_ids, agent_ids,
                          {"times": np.asarray(times, dtype=float)})
-            self._expire(Touch)
-
-    def clear(self, object_ids: Sequence[int]) -> None:
-        """Forget every agent's interactions with ``object_ids`` (objects being removed: ids are reused)."""
-        agents = [a.id for a in self.tx.world.agents()]
-        if object_ids and agents:
-            objects = [o for o in object_ids for _ in agents]
-            write_packed(self.session, TOUCHES, objects, agents * len(object_ids),
-                         {"times": np.full(len(objects), np.nan)})
-
 
 #: The ownership columns of each kind of belief a row holds, and the prior's (packed in ``priors``).
 CLAIM_COLUMNS = ("claim_p", "claim_speaker", "claim_trust", "claim_time")
@@ -533,15 +535,6 @@ class Beliefs(_Part):
         codes[(codes == 0) & ~none] = packing.SOURCES.index("prediction")  # a prior of unnamed source
         write_packed(self.session, PRIORS, object_ids, agent_ids, {"p": values, "source": codes},
                      {"time": time})
-        self._expire(Prior)
-
-    def clear_priors(self, object_ids: Sequence[int]) -> None:
-        """Forget every agent's priors about ``object_ids`` (objects being removed: ids are reused)."""
-        agents = [a.id for a in self.tx.world.agents()]
-        ids = list(object_ids)
-        if ids and agents:
-            self.write_priors([o for o in ids for _ in agents], agents * len(ids),
-                              [None] * (len(ids) * len(agents)), [None] * (len(ids) * len(agents)), 0.0)
 
     def belief_table(
         self, object_ids: Sequence[int] | None = None, agent_id: int | None = None,

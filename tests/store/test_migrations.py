@@ -7,6 +7,7 @@ from pathlib import Path
 
 from alembic import command
 from alembic.autogenerate import compare_metadata
+from alembic.config import Config
 from alembic.runtime.migration import MigrationContext
 from alembic.script import ScriptDirectory
 from sqlalchemy import create_engine
@@ -88,18 +89,24 @@ FIRST_REVISION_DATA = [
 ]
 
 
+def _first_revision_store(path: Path) -> Config:
+    """A SQLite store at ``path`` at the first revision, holding :data:`FIRST_REVISION_DATA`."""
+    cfg = alembic_config(url=f"sqlite:///{path}")
+    command.upgrade(cfg, known_revisions()[0])
+    with sqlite3.connect(path) as conn:
+        for statement in FIRST_REVISION_DATA:
+            conn.execute(statement)
+    conn.close()
+    return cfg
+
+
 def test_a_store_with_data_at_the_first_revision_upgrades_to_the_head_losing_nothing(tmp_path: Path) -> None:
     from ownctl.app import query
     from ownctl.app.context import AppContext
 
     path = tmp_path / "old.db"
-    cfg = alembic_config(url=f"sqlite:///{path}")
+    cfg = _first_revision_store(path)
     first = known_revisions()[0]
-    command.upgrade(cfg, first)
-    with sqlite3.connect(path) as conn:
-        for statement in FIRST_REVISION_DATA:
-            conn.execute(statement)
-    conn.close()
     command.upgrade(cfg, "head")
     ctx = AppContext(str(path), now=100.0)
     try:
@@ -142,12 +149,7 @@ def _ownership_layout(path: Path) -> tuple[str, list[str]]:
 
 def test_the_generation_revision_keys_beliefs_by_agent_and_back(tmp_path: Path) -> None:
     path = tmp_path / "g.db"
-    cfg = alembic_config(url=f"sqlite:///{path}")
-    command.upgrade(cfg, known_revisions()[0])
-    with sqlite3.connect(path) as conn:
-        for statement in FIRST_REVISION_DATA:
-            conn.execute(statement)
-    conn.close()
+    cfg = _first_revision_store(path)
     command.upgrade(cfg, "0003")
     sql, key = _ownership_layout(path)
     assert key == ["agent_id", "object_id"] and "WITHOUT ROWID" in sql.upper()
@@ -176,12 +178,7 @@ def test_the_packed_priors_revision_moves_priors_into_chunks_and_back(tmp_path: 
     from ownctl.store import packed as packing
 
     path = tmp_path / "p.db"
-    cfg = alembic_config(url=f"sqlite:///{path}")
-    command.upgrade(cfg, known_revisions()[0])
-    with sqlite3.connect(path) as conn:
-        for statement in FIRST_REVISION_DATA:
-            conn.execute(statement)
-    conn.close()
+    cfg = _first_revision_store(path)
     command.upgrade(cfg, "0003")
     with sqlite3.connect(path) as conn:
         before = conn.execute("SELECT * FROM ownership ORDER BY object_id, agent_id").fetchall()
