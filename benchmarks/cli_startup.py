@@ -1,6 +1,6 @@
 """Start-up of every ownctl command group beside the floor ``python -c "import sqlalchemy, numpy"``.
 
-Usage: python benchmarks/cli_startup.py [--runs 10] [--script] [--json]
+Usage: python benchmarks/cli_startup.py [--runs 10] [--script] [--json] [--instructions]
 
 Each command runs ``--runs`` times (after one warm-up) on a small temporary store, interleaved round
 by round with the floor so that a change in the machine's load touches every figure alike. For each
@@ -10,9 +10,16 @@ command: the median wall time, the median CPU time of the process (user + system
 program that opens a store and holds beliefs as arrays pays, so the difference is ownctl's own
 start-up and work. ``tests/cli/test_startup.py`` checks which modules these paths import.
 
-Commands run as ``python -c "from ownctl.cli.main import run; run()"`` with this interpreter (the
+Bytecode caches are used as for an installed package (``PYTHONDONTWRITEBYTECODE`` is dropped from
+the commands' environment, and the warm-up writes the caches): without them every ownctl module
+is compiled from source on every start, which alone costs more than the target. Commands run as
+``python -c "from ownctl.cli.main import run; run()"`` with this interpreter (the
 console script's entry point, without a launcher); ``--script`` runs the ``ownctl`` console script
 next to the interpreter instead, so a pyenv or venv shim does not add its own start-up.
+
+``--instructions`` also counts, once each under ``valgrind --tool=callgrind`` (when installed), the
+instructions the floor, ``check`` and ``claim`` execute: a figure a busy machine does not change,
+to compare versions when wall times are noisy (the process's hash seed is fixed for it).
 """
 
 from __future__ import annotations
@@ -21,7 +28,9 @@ import argparse
 import json
 import os
 import platform
+import re
 import resource
+import shutil
 import statistics
 import subprocess
 import sys
@@ -108,17 +117,55 @@ def timed(cmd: list[str], env: dict[str, str], stdin: str | None) -> tuple[float
     return wall, cpu
 
 
-def measure(runs: int, script: bool) -> tuple[tuple[float, float], list[Figure]]:
-    """The floor's medians (wall, CPU seconds) and every command's figures."""
-    exe = ownctl_command(script)
+def _environment() -> dict[str, str]:
     env = {**os.environ, "OWNCTL_NOW": "1000", "PYTHONPATH": os.pathsep.join(
         [str(ROOT), os.environ.get("PYTHONPATH", "")])}
     env.pop("OWNCTL_DB", None)
+    # as an installed ownctl, and the floor's libraries, run: from bytecode caches (the warm-up
+    # writes them), not compiling every module from source on every start
+    env.pop("PYTHONDONTWRITEBYTECODE", None)
+    return env
+
+
+def _prepared(exe: list[str], env: dict[str, str], folder: str) -> list[str]:
+    """A small store in ``folder`` with the set-up's agents, objects, claim and norm: its --db."""
+    db = ["--db", f"sqlite:///{folder}/startup.db"]
+    subprocess.run([*exe, *db, "init", "--quiet"], env=env, check=True, capture_output=True)
+    subprocess.run([*exe, *db, "batch", "-", "--quiet"], env=env, input=SETUP, check=True,
+                   capture_output=True, text=True)
+    return db
+
+
+def instructions(script: bool) -> dict[str, int]:
+    """Instructions executed by the floor and by ``check`` and ``claim`` (callgrind, one run each,
+    after a warm-up run that writes bytecode caches)."""
+    valgrind = shutil.which("valgrind")
+    if valgrind is None:
+        raise SystemExit("--instructions needs valgrind (apt-get install valgrind)")
+    exe = ownctl_command(script)
+    env = {**_environment(), "PYTHONHASHSEED": "0"}
+    counted = [valgrind, "--tool=callgrind", "--callgrind-out-file=/dev/null"]
+    out: dict[str, int] = {}
     with tempfile.TemporaryDirectory(prefix="ownctl-startup-") as folder:
-        db = ["--db", f"sqlite:///{folder}/startup.db"]
-        subprocess.run([*exe, *db, "init", "--quiet"], env=env, check=True, capture_output=True)
-        subprocess.run([*exe, *db, "batch", "-", "--quiet"], env=env, input=SETUP, check=True,
-                       capture_output=True, text=True)
+        db = _prepared(exe, env, folder)
+        jobs = [("floor", FLOOR)] + [(label, [*exe, *db, *args]) for label, args, _ in COMMANDS
+                                     if label in GATED]
+        for label, cmd in jobs:
+            timed(cmd, env, None)
+            done = subprocess.run([*counted, *cmd], env=env, capture_output=True, text=True)
+            found = re.search(r"Collected\s*:\s*(\d+)", done.stderr)
+            if done.returncode not in (0, 3) or found is None:
+                raise SystemExit(f"callgrind on {label} failed ({done.returncode}): {done.stderr[-300:]}")
+            out[label] = int(found.group(1))
+    return out
+
+
+def measure(runs: int, script: bool) -> tuple[tuple[float, float], list[Figure]]:
+    """The floor's medians (wall, CPU seconds) and every command's figures."""
+    exe = ownctl_command(script)
+    env = _environment()
+    with tempfile.TemporaryDirectory(prefix="ownctl-startup-") as folder:
+        db = _prepared(exe, env, folder)
         jobs = [("floor", FLOOR, None)]
         jobs += [(label, [*exe, *db, *args], stdin) for label, args, stdin in COMMANDS]
         samples: dict[str, list[tuple[float, float]]] = {label: [] for label, _, _ in jobs}
@@ -146,11 +193,15 @@ def main() -> None:
     parser.add_argument("--runs", type=int, default=10)
     parser.add_argument("--script", action="store_true", help="time the ownctl console script")
     parser.add_argument("--json", action="store_true", help="print one JSON document")
+    parser.add_argument("--instructions", action="store_true",
+                        help="also count the instructions of the floor, check and claim (callgrind)")
     args = parser.parse_args()
     (wall0, cpu0), figures = measure(args.runs, args.script)
+    counts = instructions(args.script) if args.instructions else {}
     if args.json:
         print(json.dumps({"runs": args.runs, "floor": {"wall_ms": wall0 * 1e3, "cpu_ms": cpu0 * 1e3},
                           "limit_ms": LIMIT_MS, "commands": [asdict(f) for f in figures],
+                          "instructions": counts,
                           "python": platform.python_version(), "load_average": list(os.getloadavg())}))
         return
     print(f"medians over {args.runs} runs; floor {' '.join(FLOOR[1:])!s}: "
@@ -161,6 +212,9 @@ def main() -> None:
               f"{f.cpu_over_floor_ms:+10.0f}  {f.verdict}")
     print(f"check and claim may take at most {LIMIT_MS:.0f} ms more wall time than the floor; "
           f"load average {' '.join(f'{x:.2f}' for x in os.getloadavg())}")
+    for label, count in counts.items():
+        extra = "" if label == "floor" else f" (floor + {(count - counts['floor']) / 1e6:,.0f} million)"
+        print(f"instructions, {label}: {count / 1e6:,.0f} million{extra}")
 
 
 if __name__ == "__main__":

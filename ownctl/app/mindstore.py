@@ -206,7 +206,7 @@ class Stored:
     def _save_agents(self, tx: Tx, base: _Base) -> None:
         for name in base.agents:
             if name not in self.mind.agents:
-                tx.world.remove(tx.world.agent(name))
+                tx.world.remove_agent(tx.world.agent(name).id)
                 del self.agent_ids[name]
         for name in self.mind.agents:
             if name not in base.agents:
@@ -216,7 +216,7 @@ class Stored:
         now = {a.name: a for a in self.mind.areas}
         for area in base.areas:
             if area.name not in now:
-                tx.world.remove(tx.world.area(area.name))
+                tx.world.remove_area(tx.world.area(area.name).id)
         for area in self.mind.areas:
             if area not in base.areas:
                 tx.world.add_area(area.name, area.box)

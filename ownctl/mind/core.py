@@ -30,15 +30,13 @@ from __future__ import annotations
 import copy
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass, field, replace
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ownctl.config import DECIDE_RULES, PredictConfig, Settings
 from ownctl.errors import DuplicateName, OwnctlError, UnknownName
 from ownctl.learn.evidence import Evidence, Vocabulary
-from ownctl.learn.induce import Outcome, learn_norm, learn_permission
-from ownctl.learn.posterior import RulePosterior, rule_posterior
 from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import Norm, Rule
@@ -47,6 +45,10 @@ from ownctl.ownership.features import agent_features, percept_features
 from ownctl.ownership.infer import posterior
 from ownctl.ownership.predict import KernelOwnershipModel, calibrated_base_rate
 from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
+
+if TYPE_CHECKING:  # the learner is imported when a Mind first learns, not to decide one action
+    from ownctl.learn.induce import Outcome
+    from ownctl.learn.posterior import RulePosterior
 
 #: A permission value at or above this forbids its step (also the learner's cover threshold).
 PERMISSION_CUT = 0.5
@@ -460,6 +462,8 @@ class Mind:
         """The posterior over the action's rule sets given its permissions (prior ownership), around
         the current rules; the stated norms are in every set (:mod:`ownctl.learn.posterior`)."""
         if action not in self._rule_posteriors:
+            from ownctl.learn.posterior import rule_posterior
+
             ev, _ = self.evidence(action)
             self._rule_posteriors[action] = rule_posterior(
                 ev, action, self.vocab, self.settings.learn, self.rules[action], self.given(action),
@@ -606,6 +610,8 @@ class Mind:
         self._rule_posteriors.update(kept)
         if self.switches.frozen_rules:
             return None
+        from ownctl.learn.induce import learn_permission
+
         ev, idx = self.evidence(action)
         out = learn_permission(action, self.rules[action], self.allows[action], ev, len(idx) - 1,
                                self.vocab, self.settings.learn, self.given(action))
@@ -622,6 +628,8 @@ class Mind:
         if self.switches.frozen_rules:
             return None
         action = norm.rule.action
+        from ownctl.learn.induce import learn_norm
+
         kept = self._keep_posteriors(action)
         ev, idx = self.evidence(action)
         before, old_given = self.rules[action], self.given(action)

@@ -23,7 +23,6 @@ from typing import Any
 from sqlalchemy import Engine, create_engine, event, inspect, text
 from sqlalchemy.engine import Connection, make_url
 from sqlalchemy.exc import ArgumentError, DBAPIError, NoSuchModuleError
-from sqlalchemy.orm import Session
 from sqlalchemy.pool import StaticPool
 
 from ownctl.errors import BadValue, OwnctlError, StoreBusy, StoreError
@@ -164,9 +163,9 @@ def _probe_file(location: Location) -> str:
     return "sqlite"
 
 
-def _check_ours(conn: Connection, location: Location) -> str:
-    """The store's revision; raise StoreError if the database is foreign, broken or too new."""
-    tables = set(inspect(conn).get_table_names())
+def _check_ours(conn: Connection, location: Location, tables: set[str]) -> str:
+    """The store's revision; raise StoreError if the database (whose table names are ``tables``)
+    is foreign, broken or too new."""
     if "ownctl_store" not in tables:
         listing = ", ".join(sorted(tables)) or "none"
         raise StoreError(
@@ -174,7 +173,7 @@ def _check_ours(conn: Connection, location: Location) -> str:
             "refusing to touch it"
         )
     marker = conn.execute(text("SELECT application FROM ownctl_store")).scalars().all()
-    revision = migrate.current_revision(conn)
+    revision = migrate.current_revision(conn, tables)
     if marker != [APPLICATION] or revision is None:
         raise StoreError(f"{location.display} is a damaged ownctl store (no marker or no schema revision)")
     known = migrate.known_revisions()
@@ -209,12 +208,11 @@ class Store:
                     conn.execution_options(ownctl_write=True)
                 elif conn.dialect.name == "postgresql":  # one snapshot: the generation and the data agree
                     conn.execution_options(isolation_level="REPEATABLE READ")
-                with Session(bind=conn, expire_on_commit=False, autoflush=True) as session:
-                    with session.begin():
-                        tx = Tx(session)
-                        if write:
-                            tx.meta.advance()  # first, inside the write lock: the generation is this tx's
-                        yield tx
+                with conn.begin():
+                    tx = Tx(conn)
+                    if write:
+                        tx.meta.advance()  # first, inside the write lock: the generation is this tx's
+                    yield tx
         except DBAPIError as exc:
             raise database_error(exc, self.location) from None
 
@@ -274,7 +272,7 @@ def open_store(location: Location, create: bool = False) -> Store:
     engine = _make_engine(location)
     try:
         with engine.connect() as conn:
-            tables = inspect(conn).get_table_names()
+            tables = set(inspect(conn).get_table_names())
             if not tables:
                 in_memory = location.path is None and location.url.startswith("sqlite")
                 if location.explicit and not create and not in_memory:
@@ -284,7 +282,7 @@ def open_store(location: Location, create: bool = False) -> Store:
                     )
                 revision = None
             else:
-                revision = _check_ours(conn, location)
+                revision = _check_ours(conn, location, tables)
     except DBAPIError as exc:
         engine.dispose()
         raise StoreError(f"cannot open store {location.display}: {exc.orig}") from None

@@ -12,6 +12,7 @@ reading agrees with Alembic's).
 from __future__ import annotations
 
 import re
+from collections.abc import Collection
 from functools import lru_cache
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -84,9 +85,10 @@ def head_revision() -> str:
     return known_revisions()[-1]
 
 
-def current_revision(connection: Connection) -> str | None:
-    """The revision recorded in the database (None when it has no alembic_version table)."""
-    if "alembic_version" not in inspect(connection).get_table_names():
+def current_revision(connection: Connection, tables: Collection[str] | None = None) -> str | None:
+    """The revision recorded in the database (None when it has no alembic_version table);
+    ``tables``: the database's table names, when the caller has read them already."""
+    if "alembic_version" not in (inspect(connection).get_table_names() if tables is None else tables):
         return None
     rows = connection.execute(text("SELECT version_num FROM alembic_version")).scalars().all()
     if len(rows) > 1:

@@ -1,18 +1,21 @@
-"""The store's tables as SQLAlchemy 2 typed ORM models (docs/architecture.md, section 6).
+"""The store's tables as SQLAlchemy 2 Core tables (docs/architecture.md, section 6).
 
 The schema is created and changed only by the Alembic revisions in ``migrations/versions/``; these
-models describe the head revision (a test compares them). Times are absolute seconds on the store's
+tables describe the head revision (a test compares them). Times are absolute seconds on the store's
 clock. Ground truth (``truth_owners``, ``truth_norms``) is kept in its own tables, read only by the
 simulated instructor and by metrics, never by belief code.
+
+Core tables, not ORM classes: the repository (``ownctl/store/repo.py``) reads plain rows and
+writes with explicit statements, so opening a store and deciding one action imports no ORM (a
+command-line ``check`` starts in a fraction of the time).
 """
 
 from __future__ import annotations
 
-from typing import Any
-
 from sqlalchemy import (
     JSON,
     BigInteger,
+    Column,
     Float,
     ForeignKey,
     Index,
@@ -21,10 +24,10 @@ from sqlalchemy import (
     MetaData,
     PrimaryKeyConstraint,
     String,
+    Table,
     Text,
     UniqueConstraint,
 )
-from sqlalchemy.orm import DeclarativeBase, Mapped, mapped_column
 
 #: Every constraint gets a predictable name, so batch-mode migrations can drop and alter them.
 NAMING_CONVENTION = {
@@ -40,199 +43,181 @@ APPLICATION = "ownctl"
 
 NAME = 64  # length of a name column (the naming rule allows 64 characters)
 
-
-class Base(DeclarativeBase):
-    """Declarative base with the naming convention."""
-
-    metadata = MetaData(naming_convention=NAMING_CONVENTION)
-    type_annotation_map = {dict[str, Any]: JSON, list[Any]: JSON}
+metadata = MetaData(naming_convention=NAMING_CONVENTION)
 
 
-class StoreMarker(Base):
-    """One row saying "this database is an ownctl store"; a database without it is refused."""
-
-    __tablename__ = "ownctl_store"
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    application: Mapped[str] = mapped_column(String(32))
-    created: Mapped[float] = mapped_column(Float)
+def _name() -> String:
+    return String(NAME)
 
 
-class Agent(Base):
-    """A possible owner, addressed by a unique name."""
-
-    __tablename__ = "agents"
-    id: Mapped[int] = mapped_column(primary_key=True)
-    name: Mapped[str] = mapped_column(String(NAME), unique=True)
-    created: Mapped[float] = mapped_column(Float)
+def _to(target: str, ondelete: str = "CASCADE") -> ForeignKey:
+    return ForeignKey(target, ondelete=ondelete)
 
 
-class Object(Base):
-    """An object and its crisp percepts; ``extra`` holds free-form percepts for later features."""
+#: One row saying "this database is an ownctl store"; a database without it is refused.
+store_marker = Table(
+    "ownctl_store", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("application", String(32), nullable=False),
+    Column("created", Float, nullable=False),
+)
 
-    __tablename__ = "objects"
-    id: Mapped[int] = mapped_column(primary_key=True)
-    name: Mapped[str] = mapped_column(String(NAME), unique=True)
-    color: Mapped[str | None] = mapped_column(String(NAME))
-    x: Mapped[float | None] = mapped_column(Float)
-    y: Mapped[float | None] = mapped_column(Float)
-    z: Mapped[float | None] = mapped_column(Float)
-    extra: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)
-    created: Mapped[float] = mapped_column(Float)
+#: A possible owner, addressed by a unique name.
+agents = Table(
+    "agents", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("name", _name(), nullable=False, unique=True),
+    Column("created", Float, nullable=False),
+)
 
+#: An object and its crisp percepts; ``extra`` holds free-form percepts for later features.
+objects = Table(
+    "objects", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("name", _name(), nullable=False, unique=True),
+    Column("color", _name()),
+    Column("x", Float),
+    Column("y", Float),
+    Column("z", Float),
+    Column("extra", JSON, nullable=False, default=dict),
+    Column("created", Float, nullable=False),
+)
 
-class Category(Base):
-    """``inCategory(object, category)`` facts."""
+#: ``inCategory(object, category)`` facts.
+categories = Table(
+    "object_categories", metadata,
+    Column("object_id", Integer, _to("objects.id"), primary_key=True),
+    Column("category", _name(), primary_key=True),
+)
 
-    __tablename__ = "object_categories"
-    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"), primary_key=True)
-    category: Mapped[str] = mapped_column(String(NAME), primary_key=True)
+#: The last times (absolute, store clock) one agent interacted with a chunk of object ids, packed
+#: (``ownctl/store/packed.py``: float64, NaN where it never did).
+touches = Table(
+    "touches", metadata,
+    Column("agent_id", Integer, _to("agents.id"), primary_key=True),
+    Column("chunk", Integer, primary_key=True),
+    Column("times", LargeBinary, nullable=False),
+    sqlite_with_rowid=False,
+)
 
+#: A named axis-aligned box ``(x0, y0, x1, y1)`` on the table plane.
+areas = Table(
+    "areas", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("name", _name(), nullable=False, unique=True),
+    *(Column(c, Float, nullable=False) for c in ("x0", "y0", "x1", "y1")),
+)
 
-class Touch(Base):
-    """The last times (absolute, store clock) one agent interacted with a chunk of object ids, packed
-    (``ownctl/store/packed.py``: float64, NaN where it never did)."""
+#: Claims and posteriors about ``ownedBy(object, agent)``, each nullable. Rows exist only for the
+#: pairs that hold a claim or a posterior (written with one bulk upsert per set of columns); a pair
+#: without a row holds neither. Priors, held for every pair, are packed per agent in ``priors``.
+#: The key is (agent, object), so an agent's rows lie together (on SQLite the table is stored by its
+#: key); lookups by object use the object_id index.
+ownership = Table(
+    "ownership", metadata,
+    Column("object_id", Integer, _to("objects.id"), nullable=False),
+    Column("agent_id", Integer, _to("agents.id"), nullable=False),
+    Column("claim_p", Float),
+    Column("claim_speaker", _name()),
+    Column("claim_trust", Float),
+    Column("claim_time", Float),
+    Column("posterior_p", Float),
+    Column("posterior_source", String(32)),
+    Column("posterior_time", Float),
+    PrimaryKeyConstraint("agent_id", "object_id"),
+    Index("ix_ownership_object_id", "object_id"),
+    sqlite_with_rowid=False,
+)
 
-    __tablename__ = "touches"
-    __table_args__ = ({"sqlite_with_rowid": False},)
-    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
-    chunk: Mapped[int] = mapped_column(Integer, primary_key=True)
-    times: Mapped[bytes] = mapped_column(LargeBinary)
+#: The predicted priors of one agent about a chunk of object ids (``ownctl/store/packed.py``):
+#: probabilities (float64, NaN where none is held) and source codes, packed, and the chunk's last
+#: write time.
+priors = Table(
+    "priors", metadata,
+    Column("agent_id", Integer, _to("agents.id"), primary_key=True),
+    Column("chunk", Integer, primary_key=True),
+    Column("p", LargeBinary, nullable=False),
+    Column("source", LargeBinary, nullable=False),
+    Column("time", Float, nullable=False),
+    sqlite_with_rowid=False,
+)
 
+#: The store generation: one row (id 1) whose ``value`` every write transaction advances.
+generation = Table(
+    "generation", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("value", BigInteger, nullable=False),
+)
 
-class Area(Base):
-    """A named axis-aligned box ``(x0, y0, x1, y1)`` on the table plane."""
+#: ``forbid|allow ACTION on OBJECT``: value 1.0 forbids, 0.0 allows (values between are soft);
+#: ``seq`` is the arrival rank (given again: moves to the end), ``seen`` the object's percepts then.
+permissions = Table(
+    "permissions", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("action", String(32), nullable=False),
+    Column("object_id", Integer, _to("objects.id"), nullable=False),
+    Column("value", Float, nullable=False),
+    Column("speaker", _name()),
+    Column("time", Float, nullable=False),
+    Column("seq", Integer),
+    Column("seen", JSON),
+    UniqueConstraint("action", "object_id"),
+)
 
-    __tablename__ = "areas"
-    id: Mapped[int] = mapped_column(primary_key=True)
-    name: Mapped[str] = mapped_column(String(NAME), unique=True)
-    x0: Mapped[float] = mapped_column(Float)
-    y0: Mapped[float] = mapped_column(Float)
-    x1: Mapped[float] = mapped_column(Float)
-    y1: Mapped[float] = mapped_column(Float)
+#: A rule in canonical text: a forbid rule of origin "given" or "learned", or an allow norm (origin
+#: "allow", text ``allow ACTION if ...``) that the learner subtracts; ``rank`` orders an action's
+#: rules as the learner left them.
+rules = Table(
+    "rules", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("action", String(32), nullable=False),
+    Column("text", Text, nullable=False),
+    Column("origin", String(16), nullable=False),
+    Column("provenance", JSON, nullable=False, default=dict),
+    Column("created", Float, nullable=False),
+    Column("rank", Integer),
+    UniqueConstraint("action", "text"),
+)
 
+#: One setting: ``key`` -> JSON value (thresholds, trust, frozen and disabled flags).
+settings = Table(
+    "settings", metadata,
+    Column("key", String(64), primary_key=True),
+    Column("value", JSON, nullable=False),
+)
 
-class Ownership(Base):
-    """Claims and posteriors about ``ownedBy(object, agent)``, each nullable.
+#: Ground truth of a simulated world: the true P(ownedBy(object, agent)).
+truth_owners = Table(
+    "truth_owners", metadata,
+    Column("object_id", Integer, _to("objects.id"), primary_key=True),
+    Column("agent_id", Integer, _to("agents.id"), primary_key=True),
+    Column("p", Float, nullable=False),
+)
 
-    Rows exist only for the pairs that hold a claim or a posterior (written with one bulk upsert per
-    set of columns); a pair without a row holds neither. Priors, held for every pair, are packed per
-    agent in :class:`Prior`. The key is (agent, object), so an agent's rows lie together (on SQLite
-    the table is stored by its key); lookups by object use the object_id index.
-    """
+#: Ground truth of a simulated world: a true norm, as text.
+truth_norms = Table(
+    "truth_norms", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("text", Text, nullable=False, unique=True),
+)
 
-    __tablename__ = "ownership"
-    __table_args__ = (
-        PrimaryKeyConstraint("agent_id", "object_id"),
-        Index("ix_ownership_object_id", "object_id"),
-        {"sqlite_with_rowid": False},
-    )
-    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"))
-    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"))
-    claim_p: Mapped[float | None] = mapped_column(Float)
-    claim_speaker: Mapped[str | None] = mapped_column(String(NAME))
-    claim_trust: Mapped[float | None] = mapped_column(Float)
-    claim_time: Mapped[float | None] = mapped_column(Float)
-    posterior_p: Mapped[float | None] = mapped_column(Float)
-    posterior_source: Mapped[str | None] = mapped_column(String(32))
-    posterior_time: Mapped[float | None] = mapped_column(Float)
+#: The conversation context (one row, id 1): speaker, current target and action, last refusal.
+context = Table(
+    "context", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("speaker", _name()),
+    Column("target_id", Integer, _to("objects.id", ondelete="SET NULL")),
+    Column("action", String(32)),
+    Column("last_refusal", JSON),
+)
 
-
-class Prior(Base):
-    """The predicted priors of one agent about a chunk of object ids (``ownctl/store/packed.py``):
-    probabilities (float64, NaN where none is held) and source codes, packed, and the chunk's last
-    write time."""
-
-    __tablename__ = "priors"
-    __table_args__ = ({"sqlite_with_rowid": False},)
-    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
-    chunk: Mapped[int] = mapped_column(Integer, primary_key=True)
-    p: Mapped[bytes] = mapped_column(LargeBinary)
-    source: Mapped[bytes] = mapped_column(LargeBinary)
-    time: Mapped[float] = mapped_column(Float)
-
-
-class Generation(Base):
-    """The store generation: one row (id 1) whose ``value`` every write transaction advances."""
-
-    __tablename__ = "generation"
-    id: Mapped[int] = mapped_column(Integer, primary_key=True)
-    value: Mapped[int] = mapped_column(BigInteger)
-
-
-class Permission(Base):
-    """``forbid|allow ACTION on OBJECT``: value 1.0 forbids, 0.0 allows (values between are soft)."""
-
-    __tablename__ = "permissions"
-    __table_args__ = (UniqueConstraint("action", "object_id"),)
-    id: Mapped[int] = mapped_column(primary_key=True)
-    action: Mapped[str] = mapped_column(String(32))
-    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"))
-    value: Mapped[float] = mapped_column(Float)
-    speaker: Mapped[str | None] = mapped_column(String(NAME))
-    time: Mapped[float] = mapped_column(Float)
-    seq: Mapped[int | None] = mapped_column(Integer)  # arrival rank (given again: moves to the end)
-    seen: Mapped[dict[str, Any] | None] = mapped_column(JSON)  # the object's percepts when given
-
-
-class RuleRow(Base):
-    """A rule in canonical text: a forbid rule of origin "given" or "learned", or an allow norm
-    (origin "allow", text ``allow ACTION if ...``) that the learner subtracts; ``rank`` orders an
-    action's rules as the learner left them."""
-
-    __tablename__ = "rules"
-    __table_args__ = (UniqueConstraint("action", "text"),)
-    id: Mapped[int] = mapped_column(primary_key=True)
-    action: Mapped[str] = mapped_column(String(32))
-    text: Mapped[str] = mapped_column(Text)
-    origin: Mapped[str] = mapped_column(String(16))
-    provenance: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)
-    created: Mapped[float] = mapped_column(Float)
-    rank: Mapped[int | None] = mapped_column(Integer)
-
-
-class Setting(Base):
-    """One setting: ``key`` -> JSON value (thresholds, trust, frozen and disabled flags)."""
-
-    __tablename__ = "settings"
-    key: Mapped[str] = mapped_column(String(64), primary_key=True)
-    value: Mapped[Any] = mapped_column(JSON)
-
-
-class TruthOwner(Base):
-    """Ground truth of a simulated world: the true P(ownedBy(object, agent))."""
-
-    __tablename__ = "truth_owners"
-    object_id: Mapped[int] = mapped_column(ForeignKey("objects.id", ondelete="CASCADE"), primary_key=True)
-    agent_id: Mapped[int] = mapped_column(ForeignKey("agents.id", ondelete="CASCADE"), primary_key=True)
-    p: Mapped[float] = mapped_column(Float)
-
-
-class TruthNorm(Base):
-    """Ground truth of a simulated world: a true norm, as text."""
-
-    __tablename__ = "truth_norms"
-    id: Mapped[int] = mapped_column(primary_key=True)
-    text: Mapped[str] = mapped_column(Text, unique=True)
-
-
-class Conversation(Base):
-    """The conversation context (one row, id 1): speaker, current target and action, last refusal."""
-
-    __tablename__ = "context"
-    id: Mapped[int] = mapped_column(primary_key=True)
-    speaker: Mapped[str | None] = mapped_column(String(NAME))
-    target_id: Mapped[int | None] = mapped_column(ForeignKey("objects.id", ondelete="SET NULL"))
-    action: Mapped[str | None] = mapped_column(String(32))
-    last_refusal: Mapped[dict[str, Any] | None] = mapped_column(JSON)
-
-
-class Event(Base):
-    """Append-only log of every instruction: who, when, from which interface, what."""
-
-    __tablename__ = "events"
-    id: Mapped[int] = mapped_column(primary_key=True)
-    time: Mapped[float] = mapped_column(Float)
-    actor: Mapped[str | None] = mapped_column(String(NAME))
-    interface: Mapped[str] = mapped_column(String(16))
-    command: Mapped[str] = mapped_column(Text)
-    payload: Mapped[dict[str, Any]] = mapped_column(JSON, default=dict)
+#: Append-only log of every instruction: who, when, from which interface, what.
+events = Table(
+    "events", metadata,
+    Column("id", Integer, primary_key=True),
+    Column("time", Float, nullable=False),
+    Column("actor", _name()),
+    Column("interface", String(16), nullable=False),
+    Column("command", Text, nullable=False),
+    Column("payload", JSON, nullable=False, default=dict),
+)

@@ -1,6 +1,8 @@
 """The repository: every read and write the application layer makes, on one open transaction.
 
-:class:`Tx` wraps a SQLAlchemy session; the app layer never sees SQL. Lookups by name raise
+:class:`Tx` wraps a SQLAlchemy Core connection inside its transaction; the app layer never sees
+SQL. Reads return plain rows (attributes named as the columns of ``ownctl/store/models.py``,
+read-only: every change is a statement here). Lookups by name raise
 :class:`UnknownName` listing the known names; adding a taken name raises :class:`DuplicateName`.
 Claims and posteriors about many (object, agent) pairs are written with one bulk upsert by primary
 key; priors are packed per agent in chunks of object ids (``ownctl/store/packed.py``).
@@ -13,40 +15,37 @@ from collections import Counter
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
 from itertools import islice
-from typing import Any, cast
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
-from sqlalchemy import Table, delete, func, insert, select, update
-from sqlalchemy.orm import Session
+from sqlalchemy import Connection, Row, Table, delete, func, insert, select, update
 
 from ownctl.errors import DuplicateName, StoreError, UnknownName
 from ownctl.store import packed as packing
 from ownctl.store.models import (
-    Agent,
-    Area,
-    Base,
-    Category,
-    Conversation,
-    Event,
-    Generation,
-    Object,
-    Ownership,
-    Permission,
-    RuleRow,
-    Setting,
-    TruthNorm,
-    TruthOwner,
+    agents,
+    areas,
+    categories,
+    context,
+    events,
+    generation,
+    objects,
+    ownership,
+    permissions,
+    rules,
+    settings,
+    truth_norms,
+    truth_owners,
 )
+
+if TYPE_CHECKING:
+    #: A row as the repository returns it: columns by attribute (``row.name``) or by position.
+    Record = Row[*tuple[Any, ...]]
 
 CHUNK = 900  # ids per IN (...) clause, below SQLite's default limit on bound parameters
 BATCH = 100_000  # rows per executemany of a bulk insert
 
 KEEP: Any = object()
-
-
-def _table(model: type[Base]) -> Table:
-    """The Core table of an ORM model (for bulk statements)."""
-    return cast(Table, model.__table__)
 
 
 #: PostgreSQL array types of the columns that bulk updates pass as arrays.
@@ -59,10 +58,9 @@ def _pg_array_type(column: str) -> str:
     return "text[]" if column.endswith(("_speaker", "_source")) else "float8[]"
 
 
-def bulk_insert(session: Session, table: str, columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> None:
+def bulk_insert(conn: Connection, table: str, columns: Sequence[str], rows: Iterable[Sequence[Any]]) -> None:
     """Insert many rows of plain values (a JSON column given as its text) with one statement: COPY
-    on PostgreSQL, one executemany on SQLite (no per-row ORM or parameter-dict work)."""
-    conn = session.connection()
+    on PostgreSQL, one executemany on SQLite (no per-row parameter-dict work)."""
     names = ", ".join(columns)
     if conn.dialect.name == "postgresql":
         raw: Any = conn.connection.dbapi_connection
@@ -77,14 +75,13 @@ def bulk_insert(session: Session, table: str, columns: Sequence[str], rows: Iter
         conn.exec_driver_sql(statement, batch)
 
 
-def bulk_upsert(session: Session, table: str, keys: Sequence[str], columns: Sequence[str],
+def bulk_upsert(conn: Connection, table: str, keys: Sequence[str], columns: Sequence[str],
                 values: Mapping[str, Sequence[Any]]) -> None:
     """Insert or update many rows with one statement: ``INSERT ... ON CONFLICT (keys) DO UPDATE``,
     an executemany on SQLite and one ``INSERT ... SELECT FROM unnest(arrays)`` on PostgreSQL.
     ``values`` maps every key and column to a list, one entry per row."""
     if not values[keys[0]]:
         return
-    conn = session.connection()
     names = [*keys, *columns]
     sets = ", ".join(f"{c} = excluded.{c}" for c in columns)
     conflict = f"ON CONFLICT ({', '.join(keys)}) " + (f"DO UPDATE SET {sets}" if columns else "DO NOTHING")
@@ -113,7 +110,7 @@ PRIORS = PackedTable("priors", (("p", packing.FLOAT), ("source", packing.CODE)),
 TOUCHES = PackedTable("touches", (("times", packing.FLOAT),))
 
 
-def read_packed(session: Session, table: PackedTable, object_ids: Sequence[int] | np.ndarray,
+def read_packed(conn: Connection, table: PackedTable, object_ids: Sequence[int] | np.ndarray,
                 agent_ids: Sequence[int]) -> dict[str, np.ndarray]:
     """Column -> (len(object_ids), len(agent_ids)) values of ``table``: NaN (floats) or 0 (codes)
     where nothing is held; a scalar column gives its chunk's value to every cell the chunk holds."""
@@ -126,7 +123,7 @@ def read_packed(session: Session, table: PackedTable, object_ids: Sequence[int] 
         return out
     chunk, slot = packing.chunk_of(objs)
     column = {int(a): j for j, a in enumerate(agent_ids)}
-    wanted = np.unique(chunk).tolist()
+    wanted = sorted(set(chunk.tolist()))  # (np.unique would import numpy.ma: 15 ms at start-up)
     by_chunk = {c: np.flatnonzero(chunk == c) for c in wanted}
     names = [c for c, _ in table.arrays]
     where = [f"agent_id IN ({', '.join(str(a) for a in column)})"]
@@ -134,7 +131,7 @@ def read_packed(session: Session, table: PackedTable, object_ids: Sequence[int] 
         where.append(f"chunk IN ({', '.join(str(c) for c in wanted)})")
     sql = (f"SELECT agent_id, chunk, {', '.join([*names, *table.scalars])} FROM {table.name} "
            f"WHERE {' AND '.join(where)}")
-    for agent, c, *values in session.connection().exec_driver_sql(sql):
+    for agent, c, *values in conn.exec_driver_sql(sql):
         rows = by_chunk.get(int(c))
         if rows is None:
             continue
@@ -146,7 +143,7 @@ def read_packed(session: Session, table: PackedTable, object_ids: Sequence[int] 
     return out
 
 
-def write_packed(session: Session, table: PackedTable, object_ids: Sequence[int] | np.ndarray,
+def write_packed(conn: Connection, table: PackedTable, object_ids: Sequence[int] | np.ndarray,
                  agent_ids: Sequence[int] | np.ndarray, values: Mapping[str, np.ndarray],
                  scalars: Mapping[str, Any] | None = None) -> None:
     """Set the cells (object_ids[k], agent_ids[k]) of every array column of ``table`` to
@@ -162,7 +159,6 @@ def write_packed(session: Session, table: PackedTable, object_ids: Sequence[int]
     parts = np.split(order, np.flatnonzero(np.diff(key[order])) + 1)
     keys = [(int(agents[part[0]]), int(chunk[part[0]])) for part in parts]
     names = [c for c, _ in table.arrays]
-    conn = session.connection()
     sql = (f"SELECT agent_id, chunk, {', '.join(names)} FROM {table.name} "
            f"WHERE agent_id IN ({', '.join(str(a) for a in sorted({a for a, _ in keys}))}) "
            f"AND chunk IN ({', '.join(str(c) for c in sorted({c for _, c in keys}))})")
@@ -185,17 +181,17 @@ def write_packed(session: Session, table: PackedTable, object_ids: Sequence[int]
         mark = "%({})s" if conn.dialect.name == "postgresql" else ":{}"
         conn.exec_driver_sql(f"DELETE FROM {table.name} WHERE agent_id = {mark.format('a')} "
                              f"AND chunk = {mark.format('c')}", old)
-    bulk_insert(session, table.name, ("agent_id", "chunk", *names, *table.scalars), rows)
+    bulk_insert(conn, table.name, ("agent_id", "chunk", *names, *table.scalars), rows)
 
 
-def clear_packed(session: Session, table: PackedTable, object_ids: Sequence[int],
+def clear_packed(conn: Connection, table: PackedTable, object_ids: Sequence[int],
                  agent_ids: Sequence[int]) -> None:
     """Empty the cells of ``object_ids`` x ``agent_ids`` in every array column of ``table``
     (objects being removed: their ids may be given to new objects)."""
     objects = np.repeat(np.asarray(object_ids, dtype=np.int64), len(agent_ids))
     if len(objects):
         agents = np.tile(np.asarray(agent_ids, dtype=np.int64), len(object_ids))
-        write_packed(session, table, objects, agents,
+        write_packed(conn, table, objects, agents,
                      {c: np.full(len(objects), np.nan) if t.kind == "f" else np.zeros(len(objects), dtype=t)
                       for c, t in table.arrays}, {c: 0.0 for c in table.scalars})
 
@@ -212,110 +208,126 @@ class Talk:
 
 
 class _Part:
-    """One concern of the store inside a transaction (shares the session and the caches)."""
+    """One concern of the store inside a transaction (shares the connection and the caches)."""
 
     def __init__(self, tx: Tx) -> None:
         self.tx = tx
-        self.session = tx.session
+        self.conn = tx.conn
 
-    def _expire(self, model: type[Base]) -> None:
-        """Forget cached rows of ``model`` after a bulk statement changed them behind the session."""
-        for row in list(self.session.identity_map.values()):
-            if isinstance(row, model):
-                self.session.expire(row)
+    def _rows(self, query: Any) -> list[Record]:
+        return list(self.conn.execute(query).all())
+
+    def _row(self, query: Any) -> Record | None:
+        return self.conn.execute(query).first()
+
+    def _scalars(self, query: Any) -> list[Any]:
+        return list(self.conn.execute(query).scalars())
+
+    def _scalar(self, query: Any) -> Any:
+        return self.conn.execute(query).scalar()
+
+    def _insert(self, table: Table, **values: Any) -> Record:
+        """Insert one row and return it as stored (defaults and the new id filled in)."""
+        key = self.conn.execute(insert(table).values(**values)).inserted_primary_key
+        assert key is not None
+        cols = list(table.primary_key.columns)
+        row = self._row(select(table).where(*(c == k for c, k in zip(cols, key, strict=True))))
+        assert row is not None
+        return row
 
 
 class World(_Part):
     """Agents and areas: who may own things, and where things can be."""
 
-    def agents(self) -> list[Agent]:
+    def agents(self) -> list[Record]:
         """Every agent, by name (read once per transaction)."""
         if self.tx._agents is None:
-            self.tx._agents = list(self.session.scalars(select(Agent).order_by(Agent.name)))
+            self.tx._agents = self._rows(select(agents).order_by(agents.c.name))
         return list(self.tx._agents)
 
-    def agent(self, name: str) -> Agent:
+    def agent(self, name: str) -> Record:
         """The agent called ``name``."""
-        row = self.session.scalar(select(Agent).where(Agent.name == name))
+        row = self._row(select(agents).where(agents.c.name == name))
         if row is None:
-            raise UnknownName("agent", name, self.session.scalars(select(Agent.name)))
+            raise UnknownName("agent", name, self._scalars(select(agents.c.name)))
         return row
 
-    def add_agent(self, name: str, now: float) -> Agent:
+    def add_agent(self, name: str, now: float) -> Record:
         """A new agent (it holds no beliefs yet)."""
-        self._unique(Agent, name, "agent")
+        self._unique(agents, name, "agent")
         self.tx._agents = None
-        row = Agent(name=name, created=now)
-        self.session.add(row)
-        self.session.flush()
-        return row
+        return self._insert(agents, name=name, created=now)
 
-    def remove(self, row: Base) -> None:
-        """Delete one row (an agent's or object's beliefs, touches and permissions cascade)."""
+    def remove_agent(self, agent_id: int) -> None:
+        """Delete an agent (its beliefs, touches and ground truth cascade)."""
         self.tx._agents = None
-        self.session.delete(row)
-        self.session.flush()
+        self.conn.execute(delete(agents).where(agents.c.id == agent_id))
 
-    def areas(self) -> list[Area]:
+    def remove_area(self, area_id: int) -> None:
+        """Delete an area."""
+        self.conn.execute(delete(areas).where(areas.c.id == area_id))
+
+    def areas(self) -> list[Record]:
         """Every area, by name."""
-        return list(self.session.scalars(select(Area).order_by(Area.name)))
+        return self._rows(select(areas).order_by(areas.c.name))
 
-    def area(self, name: str) -> Area:
+    def area(self, name: str) -> Record:
         """The area called ``name``."""
-        row = self.session.scalar(select(Area).where(Area.name == name))
+        row = self._row(select(areas).where(areas.c.name == name))
         if row is None:
-            raise UnknownName("area", name, self.session.scalars(select(Area.name)))
+            raise UnknownName("area", name, self._scalars(select(areas.c.name)))
         return row
 
-    def add_area(self, name: str, box: Sequence[float]) -> Area:
+    def add_area(self, name: str, box: Sequence[float]) -> Record:
         """A new box area."""
-        self._unique(Area, name, "area")
+        self._unique(areas, name, "area")
         x0, y0, x1, y1 = box
-        row = Area(name=name, x0=x0, y0=y0, x1=x1, y1=y1)
-        self.session.add(row)
-        self.session.flush()
-        return row
+        return self._insert(areas, name=name, x0=x0, y0=y0, x1=x1, y1=y1)
 
-    def _unique(self, model: type[Agent] | type[Object] | type[Area], name: str, kind: str) -> None:
-        if self.session.scalar(select(model.id).where(model.name == name)) is not None:
+    def _unique(self, table: Table, name: str, kind: str) -> None:
+        if self._scalar(select(table.c.id).where(table.c.name == name)) is not None:
             raise DuplicateName(f"{kind} {name!r} already exists; choose another name")
 
 
 class Things(_Part):
     """Objects and their percepts: colour, position, categories and touches."""
 
-    def objects(self) -> list[Object]:
+    def objects(self) -> list[Record]:
         """Every object, in the order they were added (by id), as the paper's tasks visit them."""
-        return list(self.session.scalars(select(Object).order_by(Object.id)))
+        return self._rows(select(objects).order_by(objects.c.id))
 
-    def object(self, name: str) -> Object:
+    def object(self, name: str) -> Record:
         """The object called ``name``."""
-        row = self.session.scalar(select(Object).where(Object.name == name))
+        row = self._row(select(objects).where(objects.c.name == name))
         if row is None:
-            raise UnknownName("object", name, self.session.scalars(select(Object.name)))
+            raise UnknownName("object", name, self._scalars(select(objects.c.name)))
         return row
 
     def object_name(self, object_id: int) -> str:
         """The name of the object with primary key ``object_id``."""
-        name = self.session.scalar(select(Object.name).where(Object.id == object_id))
+        name = self._scalar(select(objects.c.name).where(objects.c.id == object_id))
         if name is None:
-            raise UnknownName("object", f"#{object_id}", self.session.scalars(select(Object.name)))
-        return name
+            raise UnknownName("object", f"#{object_id}", self._scalars(select(objects.c.name)))
+        return str(name)
 
-    def object_by_id(self, object_id: int) -> Object | None:
+    def object_by_id(self, object_id: int) -> Record | None:
         """The object with primary key ``object_id``, if any."""
-        return self.session.get(Object, object_id)
+        return self._row(select(objects).where(objects.c.id == object_id))
 
-    def object_table(self, object_ids: Sequence[int] | None = None) -> list[Any]:
+    def object_ids(self) -> list[int]:
+        """Every object's id, in id order."""
+        return self._scalars(select(objects.c.id).order_by(objects.c.id))
+
+    def object_table(self, object_ids: Sequence[int] | None = None) -> list[Record]:
         """Objects as plain rows (id, name, color, x, y, z), in id order; optionally only ``object_ids``."""
-        cols = (Object.id, Object.name, Object.color, Object.x, Object.y, Object.z)
-        query = select(*cols).order_by(Object.id)
+        c = objects.c
+        query = select(c.id, c.name, c.color, c.x, c.y, c.z).order_by(c.id)
         if object_ids is None:
-            return list(self.session.execute(query).all())
-        out: list[Any] = []
+            return self._rows(query)
+        out: list[Record] = []
         ids = list(object_ids)
         for start in range(0, len(ids), CHUNK):
-            out.extend(self.session.execute(query.where(Object.id.in_(ids[start : start + CHUNK]))).all())
+            out.extend(self._rows(query.where(c.id.in_(ids[start : start + CHUNK]))))
         rank = {oid: k for k, oid in enumerate(ids)}
         return sorted(out, key=lambda r: rank[r.id])
 
@@ -329,77 +341,70 @@ class Things(_Part):
         if not specs:
             return {}
         keys = ("name", "color", "x", "y", "z")
-        bulk_insert(self.session, "objects", (*keys, "extra", "created"),
+        bulk_insert(self.conn, "objects", (*keys, "extra", "created"),
                     ((*(s.get(k) for k in keys), json.dumps(s.get("extra") or {}), now) for s in specs))
         return self._object_ids(names)
 
     def _object_ids(self, names: Sequence[str]) -> dict[str, int]:
         """name -> id of the stored objects among ``names`` (many names: one scan of the table)."""
+        c = objects.c
         if len(names) > 10 * CHUNK:
             wanted = set(names)
-            rows = self.session.execute(select(Object.name, Object.id)).all()
-            return {n: i for n, i in rows if n in wanted}
+            return {n: i for n, i in self._rows(select(c.name, c.id)) if n in wanted}
         out: dict[str, int] = {}
         for start in range(0, len(names), CHUNK):
-            query = select(Object.name, Object.id).where(Object.name.in_(names[start : start + CHUNK]))
-            out.update({name: oid for name, oid in self.session.execute(query).all()})
+            query = select(c.name, c.id).where(c.name.in_(names[start : start + CHUNK]))
+            out.update({name: oid for name, oid in self._rows(query)})
         return out
 
     def remove_objects(self, object_ids: Sequence[int]) -> None:
         """Forget objects (their beliefs, touches, categories and permissions cascade)."""
         ids = list(object_ids)
-        agents = [a.id for a in self.tx.world.agents()]
+        held = [a.id for a in self.tx.world.agents()]
         for packed in (PRIORS, TOUCHES):  # packed per agent: no cascade reaches them
-            clear_packed(self.session, packed, ids, agents)
+            clear_packed(self.conn, packed, ids, held)
         for start in range(0, len(ids), CHUNK):
             chunk = ids[start : start + CHUNK]
-            for table in (Ownership, Category, Permission, TruthOwner):
-                self.session.execute(delete(table).where(table.object_id.in_(chunk)))
-            self.session.execute(update(Conversation).where(Conversation.target_id.in_(chunk))
-                                 .values(target_id=None))
-            self.session.execute(delete(Object).where(Object.id.in_(chunk)))
-        for model in (Object, Ownership, Permission, Conversation):
-            self._expire(model)
+            for table in (ownership, categories, permissions, truth_owners):
+                self.conn.execute(delete(table).where(table.c.object_id.in_(chunk)))
+            self.conn.execute(update(context).where(context.c.target_id.in_(chunk)).values(target_id=None))
+            self.conn.execute(delete(objects).where(objects.c.id.in_(chunk)))
 
     def set_percepts(self, object_id: int, row: dict[str, Any]) -> None:
         """Store an object's colour and position (``row``: color, x, y, z)."""
-        self.session.execute(update(Object).where(Object.id == object_id)
-                             .values(color=row["color"], x=row["x"], y=row["y"], z=row["z"]))
-        self._expire(Object)
+        self.conn.execute(update(objects).where(objects.c.id == object_id)
+                          .values(color=row["color"], x=row["x"], y=row["y"], z=row["z"]))
 
     def vocabulary(self) -> tuple[tuple[str, ...], tuple[str, ...]]:
         """The distinct colours and categories of every stored object, sorted."""
-        colors = self.session.scalars(select(Object.color).where(Object.color.is_not(None)).distinct())
-        cats = self.session.scalars(select(Category.category).distinct())
+        colors = self._scalars(select(objects.c.color).where(objects.c.color.is_not(None)).distinct())
+        cats = self._scalars(select(categories.c.category).distinct())
         return tuple(sorted(c for c in colors if c)), tuple(sorted(cats))
 
     def categories(self, object_ids: Sequence[int] | None = None) -> dict[int, set[str]]:
         """object id -> its categories (of every object, or only of ``object_ids``)."""
-        query = select(Category.object_id, Category.category)
+        c = categories.c
+        query = select(c.object_id, c.category)
         queries = [query] if object_ids is None else [
-            query.where(Category.object_id.in_(list(object_ids)[start : start + CHUNK]))
+            query.where(c.object_id.in_(list(object_ids)[start : start + CHUNK]))
             for start in range(0, len(object_ids), CHUNK)
         ]
         out: dict[int, set[str]] = {}
         for q in queries:
-            for oid, cat in self.session.execute(q).all():
+            for oid, cat in self._rows(q):
                 out.setdefault(oid, set()).add(cat)
         return out
 
-    def set_categories(self, object_id: int, categories: Iterable[str]) -> None:
+    def set_categories(self, object_id: int, names: Iterable[str]) -> None:
         """Replace an object's categories."""
-        self.session.execute(delete(Category).where(Category.object_id == object_id))
-        cats = sorted(set(categories))
-        if cats:
-            self.session.execute(insert(Category), [{"object_id": object_id, "category": c} for c in cats])
+        self.conn.execute(delete(categories).where(categories.c.object_id == object_id))
+        self.add_categories([(object_id, c) for c in names])
 
     def add_categories(self, rows: Sequence[tuple[int, str]]) -> None:
-        """Many (object id, category) memberships of new objects, at once."""
+        """Many (object id, category) memberships, at once."""
         if rows:
-            self.session.connection().execute(
-                insert(_table(Category)),
-                [{"object_id": o, "category": c} for o, c in sorted(set(rows))],
-            )
+            self.conn.execute(insert(categories),
+                              [{"object_id": o, "category": c} for o, c in sorted(set(rows))])
 
 
 class Touches(_Part):
@@ -409,10 +414,9 @@ class Touches(_Part):
                     agent_ids: Sequence[int] | None = None) -> tuple[list[int], list[int], np.ndarray]:
         """(object ids, agent ids, (objects, agents) absolute times of each agent's last interaction,
         NaN where it never interacted): every object and agent unless given."""
-        objects = (list(self.session.scalars(select(Object.id).order_by(Object.id))) if object_ids is None
-                   else list(object_ids))
-        agents = sorted(a.id for a in self.tx.world.agents()) if agent_ids is None else list(agent_ids)
-        return objects, agents, read_packed(self.session, TOUCHES, objects, agents)["times"]
+        held = self.tx.things.object_ids() if object_ids is None else list(object_ids)
+        who = sorted(a.id for a in self.tx.world.agents()) if agent_ids is None else list(agent_ids)
+        return held, who, read_packed(self.conn, TOUCHES, held, who)["times"]
 
     def pairs(
         self, agent_id: int | None = None, object_ids: Sequence[int] | None = None
@@ -421,15 +425,15 @@ class Touches(_Part):
 
         Optionally only one agent's and/or only some objects' interactions.
         """
-        objects, agents, times = self.table(object_ids, None if agent_id is None else [agent_id])
+        what, who, times = self.table(object_ids, None if agent_id is None else [agent_id])
         i, j = np.nonzero(~np.isnan(times))
-        return {(objects[a], agents[b]): float(times[a, b])
+        return {(what[a], who[b]): float(times[a, b])
                 for a, b in zip(i.tolist(), j.tolist(), strict=True)}
 
     def counts(self) -> dict[int, int]:
         """agent id -> how many objects it has interacted with."""
-        _, agents, times = self.table()
-        return dict(zip(agents, (~np.isnan(times)).sum(axis=0).tolist(), strict=True))
+        _, who, times = self.table()
+        return dict(zip(who, (~np.isnan(times)).sum(axis=0).tolist(), strict=True))
 
     def times(
         self, object_ids: Sequence[int] | None = None, agent_ids: Sequence[int] | None = None
@@ -437,10 +441,10 @@ class Touches(_Part):
         """object id -> {agent name: absolute time of its last interaction} (optionally some objects,
         and only some agents' interactions)."""
         names = {a.id: a.name for a in self.tx.world.agents()}
-        objects, agents, times = self.table(object_ids, agent_ids)
-        who = [names[a] for a in agents]
+        what, ids, times = self.table(object_ids, agent_ids)
+        who = [names[a] for a in ids]
         out: dict[int, dict[str, float]] = {}
-        for oid, row in zip(objects, times.tolist(), strict=True):
+        for oid, row in zip(what, times.tolist(), strict=True):
             held = {a: t for a, t in zip(who, row, strict=True) if t == t}  # t != t: NaN, never touched
             if held:
                 out[oid] = held
@@ -454,7 +458,7 @@ class Touches(_Part):
         """Many interactions at once: agent_ids[k] with object_ids[k] at times[k] (absolute store
         time; a pair given twice: the last)."""
         if len(object_ids):
-            write_packed(self.session, TOUCHES, object_ids, agent_ids,
+            write_packed(self.conn, TOUCHES, object_ids, agent_ids,
                          {"times": np.asarray(times, dtype=float)})
 
 #: The ownership columns of each kind of belief a row holds, and the prior's (packed in ``priors``).
@@ -499,27 +503,26 @@ class Beliefs(_Part):
              agent_ids: Sequence[int] | None = None) -> list[Any]:
         """The stored claim and posterior rows as plain rows (object_id, agent_id, claim_*,
         posterior_*), optionally only of some objects and/or agents."""
-        query = select(*_table(Ownership).columns)
+        query = select(*ownership.columns)
         if agent_ids is not None:
-            query = query.where(Ownership.agent_id.in_(list(agent_ids)))
+            query = query.where(ownership.c.agent_id.in_(list(agent_ids)))
         if object_ids is None:
-            return list(self.session.execute(query).all())
+            return self._rows(query)
         out: list[Any] = []
         ids = list(object_ids)
         for start in range(0, len(ids), CHUNK):
-            part = query.where(Ownership.object_id.in_(ids[start : start + CHUNK]))
-            out.extend(self.session.execute(part).all())
+            out.extend(self._rows(query.where(ownership.c.object_id.in_(ids[start : start + CHUNK]))))
         return out
 
     def claim_counts(self) -> dict[int, int]:
         """agent id -> how many objects carry a claim about it."""
-        query = (select(Ownership.agent_id, func.count()).where(Ownership.claim_p.is_not(None))
-                 .group_by(Ownership.agent_id))
-        return {int(a): int(n) for a, n in self.session.execute(query).all()}
+        c = ownership.c
+        query = select(c.agent_id, func.count()).where(c.claim_p.is_not(None)).group_by(c.agent_id)
+        return {int(a): int(n) for a, n in self._rows(query)}
 
     def priors(self, object_ids: Sequence[int], agent_ids: Sequence[int]) -> PriorTable:
         """The priors of ``object_ids`` x ``agent_ids``, read chunk by chunk (``ownctl/store/packed.py``)."""
-        got = read_packed(self.session, PRIORS, object_ids, agent_ids)
+        got = read_packed(self.conn, PRIORS, object_ids, agent_ids)
         return PriorTable(got["p"], packing.source_names(got["source"]), got["time"])
 
     def write_priors(self, object_ids: Sequence[int] | np.ndarray, agent_ids: Sequence[int] | np.ndarray,
@@ -533,7 +536,7 @@ class Beliefs(_Part):
         none = np.isnan(values)
         codes[none] = 0
         codes[(codes == 0) & ~none] = packing.SOURCES.index("prediction")  # a prior of unnamed source
-        write_packed(self.session, PRIORS, object_ids, agent_ids, {"p": values, "source": codes},
+        write_packed(self.conn, PRIORS, object_ids, agent_ids, {"p": values, "source": codes},
                      {"time": time})
 
     def belief_table(
@@ -544,19 +547,18 @@ class Beliefs(_Part):
         ``object_ids`` and/or one agent (or only ``agent_ids``)."""
         if agent_id is not None:
             agent_ids = [agent_id]
-        agents = sorted(a.id for a in self.tx.world.agents()) if agent_ids is None else sorted(set(agent_ids))
-        objects = (list(self.session.scalars(select(Object.id).order_by(Object.id))) if object_ids is None
-                   else sorted(set(object_ids)))
-        priors = self.priors(objects, agents)
-        held = {(r.object_id, r.agent_id): r for r in self.held(None if object_ids is None else objects,
-                                                                   None if agent_ids is None else agents)}
+        who = sorted(a.id for a in self.tx.world.agents()) if agent_ids is None else sorted(set(agent_ids))
+        what = self.tx.things.object_ids() if object_ids is None else sorted(set(object_ids))
+        got = self.priors(what, who)
+        held = {(r.object_id, r.agent_id): r for r in self.held(None if object_ids is None else what,
+                                                                   None if agent_ids is None else who)}
         out: list[BeliefRow] = []
-        for i, oid in enumerate(objects):
-            for j, aid in enumerate(agents):
-                p = priors.p[i, j]
+        for i, oid in enumerate(what):
+            for j, aid in enumerate(who):
+                p = got.p[i, j]
                 prior: dict[str, Any] = {} if np.isnan(p) else {
-                    "prior_p": float(p), "prior_source": priors.source[i, j],
-                    "prior_time": float(priors.time[i, j])}
+                    "prior_p": float(p), "prior_source": got.source[i, j],
+                    "prior_time": float(got.time[i, j])}
                 row = held.get((oid, aid))
                 kept = {} if row is None else {c: getattr(row, c) for c in HELD_COLUMNS}
                 out.append(BeliefRow(oid, aid, **kept, **prior))
@@ -594,137 +596,126 @@ class Beliefs(_Part):
                               values.get("prior_source", [None] * len(object_ids)), max(times, default=0.0))
         columns = tuple(c for c in values if c not in PRIOR_COLUMNS)
         if columns:
-            bulk_upsert(self.session, "ownership", ("agent_id", "object_id"), columns,
+            bulk_upsert(self.conn, "ownership", ("agent_id", "object_id"), columns,
                         {"agent_id": agent_ids, "object_id": object_ids, **{c: values[c] for c in columns}})
-            self._expire(Ownership)
 
 
 class Knowledge(_Part):
     """What instructors said: permissions and rules, and the ground truth of simulated worlds."""
 
-    def permissions(self, object_id: int | None = None) -> list[Permission]:
+    def permissions(self, object_id: int | None = None) -> list[Record]:
         """Permissions (all, or one object's), oldest first."""
-        query = select(Permission).order_by(Permission.id)
+        query = select(permissions).order_by(permissions.c.id)
         if object_id is not None:
-            query = query.where(Permission.object_id == object_id)
-        return list(self.session.scalars(query))
+            query = query.where(permissions.c.object_id == object_id)
+        return self._rows(query)
 
-    def permission_table(self) -> list[Any]:
+    def permission_table(self) -> list[Record]:
         """Every permission as a plain row (id, action, object_id, value), oldest first."""
-        cols = (Permission.id, Permission.action, Permission.object_id, Permission.value)
-        return list(self.session.execute(select(*cols).order_by(Permission.id)).all())
+        c = permissions.c
+        return self._rows(select(c.id, c.action, c.object_id, c.value).order_by(c.id))
 
-    def permission_rows(self, object_ids: Sequence[int] | None = None) -> list[Any]:
-        """Permissions as plain rows with every column (of every object, or only of ``object_ids``)."""
-        query = select(*_table(Permission).columns).order_by(Permission.id)
+    def permission_rows(self, object_ids: Sequence[int] | None = None) -> list[Record]:
+        """Permissions with every column (of every object, or only of ``object_ids``), oldest first."""
+        query = select(permissions).order_by(permissions.c.id)
         if object_ids is None:
-            return list(self.session.execute(query).all())
-        out: list[Any] = []
+            return self._rows(query)
+        out: list[Record] = []
         ids = list(object_ids)
         for start in range(0, len(ids), CHUNK):
-            chunk = query.where(Permission.object_id.in_(ids[start : start + CHUNK]))
-            out.extend(self.session.execute(chunk).all())
+            out.extend(self._rows(query.where(permissions.c.object_id.in_(ids[start : start + CHUNK]))))
         return sorted(out, key=lambda r: r.id)
 
     def permission_id(self, action: str, object_id: int) -> int | None:
         """The id of the permission for (action, object), if any."""
-        return self.session.scalar(select(Permission.id).where(Permission.action == action,
-                                                               Permission.object_id == object_id))
+        c = permissions.c
+        found = self._scalar(select(c.id).where(c.action == action, c.object_id == object_id))
+        return None if found is None else int(found)
 
-    def permission(self, permission_id: int) -> Permission:
+    def permission(self, permission_id: int) -> Record:
         """The permission with id ``permission_id``."""
-        row = self.session.get(Permission, permission_id)
+        row = self._row(select(permissions).where(permissions.c.id == permission_id))
         if row is None:
-            ids = [str(i) for i in self.session.scalars(select(Permission.id))]
+            ids = [str(i) for i in self._scalars(select(permissions.c.id))]
             raise UnknownName("permission", str(permission_id), ids)
         return row
 
     def set_permission(
         self, action: str, object_id: int, value: float, speaker: str | None, now: float,
         seq: int | None = None, seen: dict[str, Any] | None = None,
-    ) -> Permission:
+    ) -> Record:
         """Insert or overwrite the permission for (action, object) with its arrival rank and the
         object's percepts when it was given; the last instruction wins."""
-        row = self.session.scalar(
-            select(Permission).where(Permission.action == action, Permission.object_id == object_id)
-        )
-        if row is None:
-            row = Permission(action=action, object_id=object_id, value=value, speaker=speaker, time=now,
-                             seq=seq, seen=seen)
-            self.session.add(row)
-        else:
-            row.value, row.speaker, row.time, row.seq, row.seen = value, speaker, now, seq, seen
-        self.session.flush()
-        return row
+        held = self.permission_id(action, object_id)
+        values = {"value": value, "speaker": speaker, "time": now, "seq": seq, "seen": seen}
+        if held is None:
+            return self._insert(permissions, action=action, object_id=object_id, **values)
+        self.conn.execute(update(permissions).where(permissions.c.id == held).values(**values))
+        return self.permission(held)
 
     def delete_permission(self, action: str, object_id: int) -> None:
         """Forget the permission for (action, object), if any."""
-        self.session.execute(delete(Permission).where(Permission.action == action,
-                                                      Permission.object_id == object_id))
-        self._expire(Permission)
+        c = permissions.c
+        self.conn.execute(delete(permissions).where(c.action == action, c.object_id == object_id))
 
     def max_permission_seq(self) -> int:
         """The highest arrival rank of any permission (0 without any)."""
-        return int(self.session.scalar(select(func.max(func.coalesce(Permission.seq, Permission.id)))) or 0)
+        c = permissions.c
+        return int(self._scalar(select(func.max(func.coalesce(c.seq, c.id)))) or 0)
 
-    def rules(self, action: str | None = None) -> list[RuleRow]:
-        """Rules (all, or one action's), by id."""
-        query = select(RuleRow).order_by(RuleRow.action, RuleRow.rank, RuleRow.id)
+    def rules(self, action: str | None = None) -> list[Record]:
+        """Rules (all, or one action's), by action, rank and id."""
+        c = rules.c
+        query = select(rules).order_by(c.action, c.rank, c.id)
         if action is not None:
-            query = query.where(RuleRow.action == action)
-        return list(self.session.scalars(query))
+            query = query.where(c.action == action)
+        return self._rows(query)
 
-    def rule(self, rule_id: int) -> RuleRow:
+    def rule(self, rule_id: int) -> Record:
         """The rule with id ``rule_id``."""
-        row = self.session.get(RuleRow, rule_id)
+        row = self._row(select(rules).where(rules.c.id == rule_id))
         if row is None:
-            ids = [str(i) for i in self.session.scalars(select(RuleRow.id))]
+            ids = [str(i) for i in self._scalars(select(rules.c.id))]
             raise UnknownName("rule", str(rule_id), ids)
         return row
 
     def replace_rules(
-        self, action: str, rules: Sequence[tuple[str, str, dict[str, Any]]], now: float
+        self, action: str, given: Sequence[tuple[str, str, dict[str, Any]]], now: float
     ) -> None:
-        """Make ``rules`` (text, origin, provenance), in this order, the rules of ``action``; kept
+        """Make ``given`` (text, origin, provenance), in this order, the rules of ``action``; kept
         rules keep their ids and creation times."""
-        wanted = {t for t, _, _ in rules}
-        old: dict[str, RuleRow] = {}
-        for row in self.rules(action):
-            if row.text not in wanted:
-                self.session.delete(row)
-            else:
-                old[row.text] = row
-        self.session.flush()
-        for rank, (text_, origin, provenance) in enumerate(rules):
+        wanted = {t for t, _, _ in given}
+        old = {row.text: row.id for row in self.rules(action)}
+        gone = [i for t, i in old.items() if t not in wanted]
+        if gone:
+            self.conn.execute(delete(rules).where(rules.c.id.in_(gone)))
+        for rank, (text_, origin, provenance) in enumerate(given):
             kept = old.get(text_)
             if kept is None:
-                row = RuleRow(action=action, text=text_, origin=origin, provenance=provenance, created=now)
-                self.session.add(row)
+                self.conn.execute(insert(rules).values(action=action, text=text_, origin=origin,
+                                                       provenance=provenance, created=now, rank=rank))
             else:
-                row = kept
-                row.origin, row.provenance = origin, provenance
-            row.rank = rank
-        self.session.flush()
+                self.conn.execute(update(rules).where(rules.c.id == kept)
+                                  .values(origin=origin, provenance=provenance, rank=rank))
 
     def set_truth(self, owners: Sequence[tuple[int, int, float]], norms: Iterable[str]) -> None:
         """Add ground truth: (object id, agent id, p) triples and true norm texts."""
         if owners:
-            self.session.execute(
-                insert(TruthOwner), [{"object_id": o, "agent_id": a, "p": p} for o, a, p in owners]
-            )
+            self.conn.execute(insert(truth_owners),
+                              [{"object_id": o, "agent_id": a, "p": p} for o, a, p in owners])
         known = set(self.truth_norms())
         fresh = [n for n in dict.fromkeys(norms) if n not in known]
         if fresh:
-            self.session.execute(insert(TruthNorm), [{"text": n} for n in fresh])
+            self.conn.execute(insert(truth_norms), [{"text": n} for n in fresh])
 
     def truth_owners(self) -> dict[tuple[int, int], float]:
         """Ground truth: (object id, agent id) -> true ownership probability."""
-        rows = self.session.execute(select(TruthOwner.object_id, TruthOwner.agent_id, TruthOwner.p))
-        return {(o, a): p for o, a, p in rows}
+        c = truth_owners.c
+        return {(o, a): p for o, a, p in self._rows(select(c.object_id, c.agent_id, c.p))}
 
     def truth_norms(self) -> list[str]:
         """Ground truth: the true norms, in load order."""
-        return list(self.session.scalars(select(TruthNorm.text).order_by(TruthNorm.id)))
+        return self._scalars(select(truth_norms.c.text).order_by(truth_norms.c.id))
 
 
 class Meta(_Part):
@@ -733,21 +724,22 @@ class Meta(_Part):
     def settings(self) -> dict[str, Any]:
         """Every stored setting (key -> JSON value); a copy, read once per transaction."""
         if self.tx._settings is None:
-            self.tx._settings = {k: v for k, v in self.session.execute(select(Setting.key, Setting.value))}
+            c = settings.c
+            self.tx._settings = {k: v for k, v in self._rows(select(c.key, c.value))}
         return dict(self.tx._settings)
 
     def advance(self) -> int:
         """Advance the store generation (the first statement of every write transaction); the
         transaction's ``generation`` and ``previous`` follow."""
-        table = _table(Generation)
-        self.session.execute(update(table).where(table.c.id == 1).values(value=table.c.value + 1))
+        c = generation.c
+        self.conn.execute(update(generation).where(c.id == 1).values(value=c.value + 1))
         self.tx.generation = self.generation()
         self.tx.previous = self.tx.generation - 1
         return self.tx.generation
 
     def generation(self) -> int:
         """The store generation: how many write transactions were committed (or this one's number)."""
-        value = self.session.scalar(select(Generation.value).where(Generation.id == 1))
+        value = self._scalar(select(generation.c.value).where(generation.c.id == 1))
         if value is None:
             raise StoreError("the store has no generation row; it is damaged (restore it from a backup)")
         return int(value)
@@ -755,28 +747,14 @@ class Meta(_Part):
     def set_setting(self, key: str, value: Any) -> None:
         """Store (or with ``value`` None, delete) a setting."""
         self.tx._settings = None
-        row = self.session.get(Setting, key)
-        if value is None:
-            if row is not None:
-                self.session.delete(row)
-        elif row is None:
-            self.session.add(Setting(key=key, value=value))
-        else:
-            row.value = value
-        self.session.flush()
-
-    def context(self) -> Conversation:
-        """The conversation context row (created on first use)."""
-        row = self.session.get(Conversation, 1)
-        if row is None:
-            row = Conversation(id=1)
-            self.session.add(row)
-            self.session.flush()
-        return row
+        c = settings.c
+        self.conn.execute(delete(settings).where(c.key == key))
+        if value is not None:
+            self.conn.execute(insert(settings).values(key=key, value=value))
 
     def conversation(self) -> Talk:
         """The conversation context (empty when nothing was said or checked yet)."""
-        row = self.session.get(Conversation, 1)
+        row = self._row(select(context).where(context.c.id == 1))
         if row is None:
             return Talk()
         target = self.tx.things.object_by_id(row.target_id) if row.target_id is not None else None
@@ -786,40 +764,40 @@ class Meta(_Part):
         self, *, speaker: Any = KEEP, target: Any = KEEP, action: Any = KEEP, refusal: Any = KEEP
     ) -> Talk:
         """Update the parts of the conversation given (None clears one); returns the new context."""
-        row = self.context()
+        values: dict[str, Any] = {}
         if speaker is not KEEP:
-            row.speaker = speaker
+            values["speaker"] = speaker
         if target is not KEEP:
-            row.target_id = None if target is None else self.tx.things.object(target).id
+            values["target_id"] = None if target is None else self.tx.things.object(target).id
         if action is not KEEP:
-            row.action = action
+            values["action"] = action
         if refusal is not KEEP:
-            row.last_refusal = refusal
-        self.session.flush()
+            values["last_refusal"] = refusal
+        if self._scalar(select(context.c.id).where(context.c.id == 1)) is None:
+            self.conn.execute(insert(context).values(id=1, **values))
+        elif values:
+            self.conn.execute(update(context).where(context.c.id == 1).values(**values))
         return self.conversation()
 
     def log(
         self, time: float, actor: str | None, interface: str, command: str, payload: dict[str, Any]
-    ) -> Event:
+    ) -> Record:
         """Append an instruction to the event log."""
-        row = Event(time=time, actor=actor, interface=interface, command=command, payload=payload)
-        self.session.add(row)
-        self.session.flush()
-        return row
+        return self._insert(events, time=time, actor=actor, interface=interface, command=command,
+                            payload=payload)
 
-    def events(self, limit: int | None = None) -> list[Event]:
+    def events(self, limit: int | None = None) -> list[Record]:
         """The last ``limit`` events (all when None), oldest first."""
-        query = select(Event).order_by(Event.id.desc())
+        query = select(events).order_by(events.c.id.desc())
         if limit is not None:
             query = query.limit(limit)
-        return list(reversed(list(self.session.scalars(query))))
+        return list(reversed(self._rows(query)))
 
     def clear(self, what: str) -> int:
         """Delete every permission ("perms"), rule ("rules") or the context ("context"); the count."""
-        table = {"perms": Permission, "rules": RuleRow, "context": Conversation}[what]
-        count = self.session.scalar(select(func.count()).select_from(table)) or 0
-        self.session.execute(delete(table))
-        self._expire(table)
+        table = {"perms": permissions, "rules": rules, "context": context}[what]
+        count = self._scalar(select(func.count()).select_from(table)) or 0
+        self.conn.execute(delete(table))
         return int(count)
 
 
@@ -829,10 +807,10 @@ class Tx:
     ``knowledge`` (permissions, rules, ground truth) and ``meta`` (settings, conversation, event
     log)."""
 
-    def __init__(self, session: Session) -> None:
-        self.session = session
+    def __init__(self, conn: Connection) -> None:
+        self.conn = conn
         self._settings: dict[str, Any] | None = None  # read once per transaction, kept in step
-        self._agents: list[Agent] | None = None  # likewise
+        self._agents: list[Record] | None = None  # likewise
         #: the store generation this transaction sees (a write transaction: the one it advanced
         #: to) and, in a write transaction, the generation before it (None in a read transaction)
         self.generation: int | None = None

@@ -20,13 +20,13 @@ import numpy as np
 import pytest
 from sqlalchemy import event
 
-import ownctl.mind.core as mind_core
 from ownctl.app import admin, decide, instruct, query, things
 from ownctl.app.beliefs import decision_belief, induction_belief
 from ownctl.app.context import AppContext
 from ownctl.app.worldfile import store_world
 from ownctl.errors import OwnctlError
 from ownctl.experiment.truth import true_rules
+from ownctl.learn import induce
 from ownctl.logic.prob import p_forbidden
 from ownctl.mind import Mind
 from ownctl.world.generator import paper_blocks_world
@@ -195,13 +195,13 @@ def test_induction_sees_priors_and_decisions_see_posteriors(
     assert atoms["alexis"] == {"agent": "alexis", "p": post[0, 0], "source": "inference"}
 
     seen: list[np.ndarray] = []
-    real = mind_core.learn_permission
+    real = induce.learn_permission  # the Mind imports the learner when it first learns
 
     def spy(action: str, rules: Any, allows: Any, ev: Any, *rest: Any) -> Any:
         seen.append(ev.frame.own.copy())
         return real(action, rules, allows, ev, *rest)
 
-    monkeypatch.setattr(mind_core, "learn_permission", spy)
+    monkeypatch.setattr(induce, "learn_permission", spy)
     instruct.add_permission(ctx, "trash", "o1", 1.0)
     assert len(seen) == 1 and np.array_equal(seen[0], prior)  # examples in permission order: o2, o1
 

@@ -1,7 +1,8 @@
-"""``ownctl --help`` starts fast: no numpy, scikit-learn, SQLAlchemy ORM or MuJoCo on that path; and
-``ownctl check`` and ``ownctl claim`` import what they need only: no pydantic (typer's value
-conversion), rich, scikit-learn, scipy, MuJoCo, matplotlib or Alembic, and no other command's CLI
-module."""
+"""``ownctl --help`` starts fast: no numpy, scikit-learn, SQLAlchemy or MuJoCo on that path; and
+``ownctl check`` and ``ownctl claim`` import what they need only: no SQLAlchemy ORM (the store is
+read and written through Core), no pydantic (typer's value conversion), rich, scikit-learn, scipy,
+MuJoCo, matplotlib or Alembic, no rule learner when no permission or norm is given, and no other
+command's CLI module."""
 
 from __future__ import annotations
 
@@ -38,6 +39,8 @@ print("HEAVY:", ",".join(heavy))
 
 #: never on the way to a decision or a claim (scipy: nowhere on any command's path)
 NOT_FOR_DECISIONS = (
+    "sqlalchemy.orm",
+    "ownctl.learn.induce",
     "pydantic",
     "typer._adapters",
     "sklearn",

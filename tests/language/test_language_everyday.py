@@ -5,7 +5,6 @@ The context is a small household (its own table: the held-out benchmark set is n
 
 from __future__ import annotations
 
-import time
 from dataclasses import replace
 
 import pytest
@@ -241,11 +240,17 @@ def test_a_typo_near_two_words_is_refused_naming_both() -> None:
 
 # -- limits and time ---------------------------------------------------------------------------
 
-def test_a_long_utterance_is_refused_at_once() -> None:
-    start = time.perf_counter()
+def test_a_long_utterance_is_refused_before_it_is_read(monkeypatch: pytest.MonkeyPatch) -> None:
+    """(How fast it is refused is measured by ``benchmarks/language.py``, not asserted here.)"""
+    import importlib
+
+    module = importlib.import_module("ownctl.language.understand")  # the module, not its function
+    def unread(*_: object, **__: object) -> object:
+        raise AssertionError("a too-long utterance was parsed")
+
+    monkeypatch.setattr(module, "_understand", unread)
     with pytest.raises(TooLong, match=f"at most {MAX_CHARS}"):
         understand("The hat is mine. " * 6000, CTX)  # about 100 KB
-    assert time.perf_counter() - start < 0.1
 
 
 def test_an_utterance_at_the_limit_is_understood() -> None:
@@ -254,21 +259,3 @@ def test_an_utterance_at_the_limit_is_understood() -> None:
     assert texts(utterance) == {"claim hat olga"}
 
 
-@pytest.mark.slow
-def test_parse_time_grows_linearly() -> None:
-    """CPU time (the parser's own, whatever else runs on the machine) of 200 and 2,000 characters."""
-
-    def cpu(text: str) -> float:
-        understand(text, CTX)
-        runs = []
-        for _ in range(7):
-            start = time.process_time()
-            understand(text, CTX)
-            runs.append(time.process_time() - start)
-        return sorted(runs)[3]
-
-    base = "The hat is mine. Don't pick up Casey's things unless they're green. That's not Jake's, I think. "
-    short, long = (base * 30)[:200].rsplit(".", 1)[0] + ".", (base * 30)[:2000].rsplit(".", 1)[0] + "."
-    t_short, t_long = cpu(short), cpu(long)
-    assert t_long < 0.05
-    assert t_long / t_short < 20

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-import time
-
 import mujoco
 import numpy as np
 import pytest
@@ -33,10 +31,9 @@ def _blocks(n: int = 6) -> list[SimBlock]:
     ]
 
 
-def test_scene_compiles_in_milliseconds() -> None:
-    start = time.perf_counter()
+def test_a_scene_of_twenty_blocks_compiles() -> None:
+    """(Its build time is measured by ``benchmarks/sim_tasks.py``, not asserted here.)"""
     world = PhysicsWorld(_blocks(20), [])
-    assert time.perf_counter() - start < 0.5
     assert world.model.nbody > 20
 
 

@@ -13,7 +13,7 @@ from alembic.script import ScriptDirectory
 from sqlalchemy import create_engine
 
 from ownctl.store.migrate import alembic_config, head_revision, known_revisions, migrations_dir
-from ownctl.store.models import Base
+from ownctl.store.models import metadata
 
 
 def _tables(path: Path) -> set[str]:
@@ -41,7 +41,7 @@ def test_models_match_the_head_revision(tmp_path: Path) -> None:
     command.upgrade(alembic_config(url=f"sqlite:///{path}"), "head")
     engine = create_engine(f"sqlite:///{path}")
     with engine.connect() as conn:
-        diff = compare_metadata(MigrationContext.configure(conn, opts={"compare_type": True}), Base.metadata)
+        diff = compare_metadata(MigrationContext.configure(conn, opts={"compare_type": True}), metadata)
     engine.dispose()
     assert diff == []
 

@@ -140,7 +140,7 @@ def test_beliefs_are_written_in_bulk_and_cascade(tmp_path: Path) -> None:
         beliefs = tx.beliefs.ownership(agent_id=agents[1].id)
         assert len(beliefs) == 200 and {b.prior_p for b in beliefs} == {0.3}
         assert len(tx.beliefs.ownership()) == 600
-        tx.world.remove(tx.things.object("block0"))
+        tx.things.remove_objects([tx.things.object("block0").id])
         assert len(tx.beliefs.ownership()) == 597
         tx.beliefs.write_beliefs([{"object_id": b.object_id, "agent_id": b.agent_id, "prior_p": None}
                                   for b in tx.beliefs.ownership()])
