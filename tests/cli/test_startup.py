@@ -41,6 +41,7 @@ print("HEAVY:", ",".join(heavy))
 NOT_FOR_DECISIONS = (
     "sqlalchemy.orm",
     "ownctl.learn.induce",
+    "numpy.ma",  # np.unique and np.isin import it
     "pydantic",
     "typer._adapters",
     "sklearn",
