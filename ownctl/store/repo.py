@@ -762,8 +762,8 @@ class Meta(_Part):
 
     def converse(
         self, *, speaker: Any = KEEP, target: Any = KEEP, action: Any = KEEP, refusal: Any = KEEP
-    ) -> Talk:
-        """Update the parts of the conversation given (None clears one); returns the new context."""
+    ) -> None:
+        """Update the parts of the conversation given (None clears one)."""
         values: dict[str, Any] = {}
         if speaker is not KEEP:
             values["speaker"] = speaker
@@ -777,7 +777,6 @@ class Meta(_Part):
             self.conn.execute(insert(context).values(id=1, **values))
         elif values:
             self.conn.execute(update(context).where(context.c.id == 1).values(**values))
-        return self.conversation()
 
     def log(
         self, time: float, actor: str | None, interface: str, command: str, payload: dict[str, Any]
