@@ -17,6 +17,7 @@ and so every decision, depends only on the set of examples, not on their arrival
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, replace
@@ -65,6 +66,34 @@ def canonical_order(ev: Evidence) -> tuple[Evidence, list[int], list[bytes]]:
     return ev.reordered(order), order, [digests[i] for i in order]
 
 
+@dataclass(frozen=True)
+class _Lattice:
+    """What :func:`best_rule` needs of the vocabulary and the model, made once per pair: the
+    literals, which may stand together, each rule length's prior cost and least cost, each literal's
+    negation cost, ``after[x, y]`` (literal ``y``'s atom comes after literal ``x``'s), and the least
+    prior cost of one more literal."""
+
+    lits: tuple[Literal, ...]
+    ok: np.ndarray
+    cost: tuple[float, ...]
+    min_cost: tuple[float, ...]
+    neg_cost: np.ndarray
+    after: np.ndarray
+    min_step: float
+
+
+@functools.lru_cache(maxsize=256)
+def _lattice(atoms: tuple[Literal, ...], model: Model, max_length: int) -> _Lattice:
+    """The :class:`_Lattice` of ``atoms`` under ``model`` for rules of up to ``max_length`` literals."""
+    lits = literal_list(atoms)
+    column = np.arange(len(lits))
+    return _Lattice(lits, compatible(atoms), tuple(model.cost(k) for k in range(max_length + 1)),
+                    tuple(model.min_cost(k) for k in range(max_length + 3)),
+                    model.negation_cost * (column % 2),  # literal 2j + 1 is a negation
+                    column[None, :] >= (2 * (column // 2 + 1))[:, None],
+                    min((model.cost(k + 1) - model.cost(k) for k in range(max_length)), default=math.inf))
+
+
 def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[Literal], model: Model,
               max_length: int, accept: float = 0.0, weight: np.ndarray | None = None) -> Best:
     """The rule whose addition to ``base`` most lowers the objective (score = change of the
@@ -74,9 +103,9 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     Rules are searched as tuples of literal indices (:func:`ownctl.learn.model.literal_list`), level
     by level, every level's candidates scored at once.
     """
-    atoms = tuple(atoms)
-    lits = literal_list(atoms)
-    ok = compatible(atoms)
+    lattice = _lattice(tuple(atoms), model, max_length)
+    lits, ok, cost, min_cost = lattice.lits, lattice.ok, lattice.cost, lattice.min_cost
+    neg_cost, after = lattice.neg_cost, lattice.after
     # only (world, example) pairs of positive weight matter: truth tables are kept over those pairs
     wi, ni, _, _ = ev.pairs
     table = ev.pair_literals(lits)  # (2A, P)
@@ -97,15 +126,11 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     q0 = ev.pair_prob(base_truth[None])[0]
     base_nll = float(nll(q0[None])[0])
     qstar = model.best_q(t)
-    cost = [model.cost(k) for k in range(max_length + 1)]
-    min_cost = [model.min_cost(k) for k in range(max_length + 3)]
     n_lits = len(lits)
-    neg_cost = model.negation_cost * (np.arange(n_lits) % 2)  # literal 2j + 1 is a negation
     negs = np.zeros(1)  # per node: the negation cost of its literals
-    column = np.arange(n_lits)
-    after = column[None, :] >= (2 * (column // 2 + 1))[:, None]  # after[x, y]: y's atom comes after x's
     best_at: tuple[int, int] | None = None  # (level, node index) of the best rule
     best, second, pruned = math.inf, math.inf, math.inf
+    twin_pruned = math.inf  # a bound on the refinements of twins, from their parents' bounds
     # per level: (level, parent, literal, score) arrays of the children covering what their parent covers
     twins: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]] = []
     levels: list[tuple[np.ndarray, np.ndarray]] = []  # per level: (parent index, added literal)
@@ -139,7 +164,8 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
             twins.append((length, k_same, added[same],
                           scores[k_same] + cost[length + 1] - cost[length] + neg_cost[added[same]]))
             # a twin's refinements are refinements of its parent with two literals more
-            pruned = min(pruned, float((lo_nll[k_same] + negs[k_same]).min()) + min_cost[length + 2])
+            twin_low = float((lo_nll[k_same] + negs[k_same]).min()) + min_cost[length + 2]
+            twin_pruned = min(twin_pruned, twin_low)
             parents, added, child = parents[~same], added[~same], child[~same]
         if not len(added):
             break
@@ -147,6 +173,10 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
         allowed = allowed[parents] & ok[added] & after[added]
         negs = negs[parents] + neg_cost[added]
         truths = child
+    # a twin's refinement covers what its parent's refinement without the twin's literal covers, for
+    # at least one literal's cost more, and no candidate scores below min(best, accept + CAP)
+    # (subtrees were cut only above that): either bound holds
+    pruned = min(pruned, max(twin_pruned, min(best, accept + CAP) + lattice.min_step))
     if best_at is None or best >= accept:
         lower = min(best, pruned, *(float(x[3].min()) for x in twins))
         return Best(None, best, lower, lower)
