@@ -20,7 +20,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -53,7 +53,8 @@ def example_digests(ev: Evidence) -> list[bytes]:
     member = np.array([np.asarray(f.areas[a], dtype=bool) for a in areas]).reshape(len(areas), ev.n)
     rows = np.concatenate([ev.t[:, None], np.asarray(f.own, dtype=np.float64), member.T.astype(float)],
                           axis=1)
-    tail = [f"{f.colors[i]}|{','.join(sorted(f.categories[i]))}".encode() for i in range(ev.n)]
+    tail = [f"{c}|{','.join(sorted(k)) if k else ''}".encode()
+            for c, k in zip(f.colors, f.categories, strict=True)]
     return [rows[i].tobytes() + tail[i] for i in range(ev.n)]
 
 
@@ -142,14 +143,15 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
         top_k = int(np.argmin(scores))  # the first of the lowest: canonical order among equal scores
         top = float(scores[top_k])
         if top < best:
-            rest = np.delete(scores, top_k)
-            second = min(second, best, float(rest.min()) if len(rest) else math.inf)
+            scores[top_k] = math.inf  # the lowest of the others, then the score back
+            second = min(second, best, float(scores.min()))
+            scores[top_k] = top
             best, best_at = top, (length, top_k)
         else:
             second = min(second, top)
         if length == max_length:
             break
-        lo_nll = nll(np.clip(qstar[None], q0[None], q)) - base_nll
+        lo_nll = nll(np.minimum(np.maximum(qstar[None], q0[None]), q)) - base_nll  # clipped to [q0, q]
         bounds = lo_nll + min_cost[length + 1] + negs
         keep = bounds < min(best, accept) + CAP
         if not keep.all():
@@ -391,11 +393,14 @@ class _Example:
         self.weights = ev.worlds.weights[:, i]
         self.t = np.array(ev.t[i])
         self._lits: dict[Literal, np.ndarray] = {}
+        self._rules: dict[Rule, np.ndarray] = {}
+        self._q: dict[tuple[Rule, ...], float] = {}  # the rule sets of a trace recur: each is done once
+        self._nll: dict[tuple[Rule, ...], float] = {}
 
-    def q(self, rules: Sequence[Rule]) -> float:
-        """P(some rule holds) for this example."""
-        out = np.zeros(len(self.weights), dtype=bool)
-        for rule in rules:
+    def _truth(self, rule: Rule) -> np.ndarray:
+        """Whether ``rule`` holds in each world of this example."""
+        holds = self._rules.get(rule)
+        if holds is None:
             holds = np.ones(len(self.weights), dtype=bool)
             for lit in rule.literals:
                 col = self._lits.get(lit)
@@ -404,12 +409,27 @@ class _Example:
                     col = atom[:, self.i] if atom.shape[1] > 1 else atom[:, 0]
                     col = self._lits[lit] = np.broadcast_to(~col if lit.negated else col, self.weights.shape)
                 holds &= col
-            out |= holds
-        return float(np.clip((out * self.weights).sum(), 0.0, 1.0))
+            self._rules[rule] = holds
+        return holds
+
+    def q(self, rules: Sequence[Rule]) -> float:
+        """P(some rule holds) for this example."""
+        key = tuple(rules)
+        got = self._q.get(key)
+        if got is None:
+            out = np.zeros(len(self.weights), dtype=bool)
+            for rule in key:
+                out |= self._truth(rule)
+            got = self._q[key] = min(max(float((out * self.weights).sum()), 0.0), 1.0)
+        return got
 
     def nll(self, rules: Sequence[Rule]) -> float:
         """This example's likelihood term under ``rules``."""
-        return float(self.model.nll_terms(self.t, np.array(self.q(rules))))
+        key = tuple(rules)
+        got = self._nll.get(key)
+        if got is None:
+            got = self._nll[key] = float(self.model.nll_terms(self.t, np.array(self.q(key))))
+        return got
 
     def nll_lo(self, rules: Sequence[Rule]) -> tuple[float, float]:
         """(the term under ``rules``, the least term any superset of ``rules`` could give)."""
@@ -456,7 +476,7 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
         value = d.value + one.nll(rest) - one.nll(d.current)
         if abs(value) < SLACK or (value <= 0) != (d.value <= 0):
             return Partial(tuple(steps), stop)
-        drops.append(replace(d, value=value))
+        drops.append(Drop(d.current, d.rule, value))
     value = trace.objective + one.nll(trace.result)
     return Trace(tuple(steps), stop, tuple(drops), trace.result, trace.allow_weight, value, tuple(swaps))
 
@@ -476,4 +496,4 @@ def _certify_step(st: Step, one: _Example, w: float, improving: bool) -> Step | 
         if value < score + SLACK:
             return None
         twins.append((twin, value))
-    return replace(st, score=score, margin=st.margin - gap, twins=tuple(twins))
+    return Step(st.before, st.rule, score, st.margin - gap, tuple(twins))
