@@ -156,12 +156,13 @@ class Evidence:
         _, ni, weight, starts = self.pairs
         if not len(ni):
             return np.zeros((*truth.shape[:-1], self.n))
-        out: np.ndarray = np.clip(np.add.reduceat(truth * weight, starts, axis=-1), 0.0, 1.0)
+        # sums of weights are never negative: capping them at 1 is the clip to [0, 1]
+        out: np.ndarray = np.minimum(np.add.reduceat(truth * weight, starts, axis=-1), 1.0)
         return out
 
     def prob(self, truth: np.ndarray) -> np.ndarray:
         """Exact probability per example of a truth table (..., W, n) -> (..., n)."""
-        out: np.ndarray = np.clip((truth * self.worlds.weights).sum(axis=-2), 0.0, 1.0)
+        out: np.ndarray = np.minimum((truth * self.worlds.weights).sum(axis=-2), 1.0)  # sums are >= 0
         return out
 
     def q(self, rules: Sequence[Rule]) -> np.ndarray:

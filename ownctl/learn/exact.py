@@ -17,9 +17,10 @@ and so every decision, depends only on the set of examples, not on their arrival
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -52,7 +53,8 @@ def example_digests(ev: Evidence) -> list[bytes]:
     member = np.array([np.asarray(f.areas[a], dtype=bool) for a in areas]).reshape(len(areas), ev.n)
     rows = np.concatenate([ev.t[:, None], np.asarray(f.own, dtype=np.float64), member.T.astype(float)],
                           axis=1)
-    tail = [f"{f.colors[i]}|{','.join(sorted(f.categories[i]))}".encode() for i in range(ev.n)]
+    tail = [f"{c}|{','.join(sorted(k)) if k else ''}".encode()
+            for c, k in zip(f.colors, f.categories, strict=True)]
     return [rows[i].tobytes() + tail[i] for i in range(ev.n)]
 
 
@@ -65,6 +67,34 @@ def canonical_order(ev: Evidence) -> tuple[Evidence, list[int], list[bytes]]:
     return ev.reordered(order), order, [digests[i] for i in order]
 
 
+@dataclass(frozen=True)
+class _Lattice:
+    """What :func:`best_rule` needs of the vocabulary and the model, made once per pair: the
+    literals, which may stand together, each rule length's prior cost and least cost, each literal's
+    negation cost, ``after[x, y]`` (literal ``y``'s atom comes after literal ``x``'s), and the least
+    prior cost of one more literal."""
+
+    lits: tuple[Literal, ...]
+    ok: np.ndarray
+    cost: tuple[float, ...]
+    min_cost: tuple[float, ...]
+    neg_cost: np.ndarray
+    after: np.ndarray
+    min_step: float
+
+
+@functools.lru_cache(maxsize=256)
+def _lattice(atoms: tuple[Literal, ...], model: Model, max_length: int) -> _Lattice:
+    """The :class:`_Lattice` of ``atoms`` under ``model`` for rules of up to ``max_length`` literals."""
+    lits = literal_list(atoms)
+    column = np.arange(len(lits))
+    return _Lattice(lits, compatible(atoms), tuple(model.cost(k) for k in range(max_length + 1)),
+                    tuple(model.min_cost(k) for k in range(max_length + 3)),
+                    model.negation_cost * (column % 2),  # literal 2j + 1 is a negation
+                    column[None, :] >= (2 * (column // 2 + 1))[:, None],
+                    min((model.cost(k + 1) - model.cost(k) for k in range(max_length)), default=math.inf))
+
+
 def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[Literal], model: Model,
               max_length: int, accept: float = 0.0, weight: np.ndarray | None = None) -> Best:
     """The rule whose addition to ``base`` most lowers the objective (score = change of the
@@ -74,9 +104,9 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     Rules are searched as tuples of literal indices (:func:`ownctl.learn.model.literal_list`), level
     by level, every level's candidates scored at once.
     """
-    atoms = tuple(atoms)
-    lits = literal_list(atoms)
-    ok = compatible(atoms)
+    lattice = _lattice(tuple(atoms), model, max_length)
+    lits, ok, cost, min_cost = lattice.lits, lattice.ok, lattice.cost, lattice.min_cost
+    neg_cost, after = lattice.neg_cost, lattice.after
     # only (world, example) pairs of positive weight matter: truth tables are kept over those pairs
     wi, ni, _, _ = ev.pairs
     table = ev.pair_literals(lits)  # (2A, P)
@@ -97,15 +127,11 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
     q0 = ev.pair_prob(base_truth[None])[0]
     base_nll = float(nll(q0[None])[0])
     qstar = model.best_q(t)
-    cost = [model.cost(k) for k in range(max_length + 1)]
-    min_cost = [model.min_cost(k) for k in range(max_length + 3)]
     n_lits = len(lits)
-    neg_cost = model.negation_cost * (np.arange(n_lits) % 2)  # literal 2j + 1 is a negation
     negs = np.zeros(1)  # per node: the negation cost of its literals
-    column = np.arange(n_lits)
-    after = column[None, :] >= (2 * (column // 2 + 1))[:, None]  # after[x, y]: y's atom comes after x's
     best_at: tuple[int, int] | None = None  # (level, node index) of the best rule
     best, second, pruned = math.inf, math.inf, math.inf
+    twin_pruned = math.inf  # a bound on the refinements of twins, from their parents' bounds
     # per level: (level, parent, literal, score) arrays of the children covering what their parent covers
     twins: list[tuple[int, np.ndarray, np.ndarray, np.ndarray]] = []
     levels: list[tuple[np.ndarray, np.ndarray]] = []  # per level: (parent index, added literal)
@@ -117,14 +143,15 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
         top_k = int(np.argmin(scores))  # the first of the lowest: canonical order among equal scores
         top = float(scores[top_k])
         if top < best:
-            rest = np.delete(scores, top_k)
-            second = min(second, best, float(rest.min()) if len(rest) else math.inf)
+            scores[top_k] = math.inf  # the lowest of the others, then the score back
+            second = min(second, best, float(scores.min()))
+            scores[top_k] = top
             best, best_at = top, (length, top_k)
         else:
             second = min(second, top)
         if length == max_length:
             break
-        lo_nll = nll(np.clip(qstar[None], q0[None], q)) - base_nll
+        lo_nll = nll(np.minimum(np.maximum(qstar[None], q0[None]), q)) - base_nll  # clipped to [q0, q]
         bounds = lo_nll + min_cost[length + 1] + negs
         keep = bounds < min(best, accept) + CAP
         if not keep.all():
@@ -139,7 +166,8 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
             twins.append((length, k_same, added[same],
                           scores[k_same] + cost[length + 1] - cost[length] + neg_cost[added[same]]))
             # a twin's refinements are refinements of its parent with two literals more
-            pruned = min(pruned, float((lo_nll[k_same] + negs[k_same]).min()) + min_cost[length + 2])
+            twin_low = float((lo_nll[k_same] + negs[k_same]).min()) + min_cost[length + 2]
+            twin_pruned = min(twin_pruned, twin_low)
             parents, added, child = parents[~same], added[~same], child[~same]
         if not len(added):
             break
@@ -147,6 +175,10 @@ def best_rule(ev: Evidence, action: str, base: Sequence[Rule], atoms: Sequence[L
         allowed = allowed[parents] & ok[added] & after[added]
         negs = negs[parents] + neg_cost[added]
         truths = child
+    # a twin's refinement covers what its parent's refinement without the twin's literal covers, for
+    # at least one literal's cost more, and no candidate scores below min(best, accept + CAP)
+    # (subtrees were cut only above that): either bound holds
+    pruned = min(pruned, max(twin_pruned, min(best, accept + CAP) + lattice.min_step))
     if best_at is None or best >= accept:
         lower = min(best, pruned, *(float(x[3].min()) for x in twins))
         return Best(None, best, lower, lower)
@@ -361,11 +393,14 @@ class _Example:
         self.weights = ev.worlds.weights[:, i]
         self.t = np.array(ev.t[i])
         self._lits: dict[Literal, np.ndarray] = {}
+        self._rules: dict[Rule, np.ndarray] = {}
+        self._q: dict[tuple[Rule, ...], float] = {}  # the rule sets of a trace recur: each is done once
+        self._nll: dict[tuple[Rule, ...], float] = {}
 
-    def q(self, rules: Sequence[Rule]) -> float:
-        """P(some rule holds) for this example."""
-        out = np.zeros(len(self.weights), dtype=bool)
-        for rule in rules:
+    def _truth(self, rule: Rule) -> np.ndarray:
+        """Whether ``rule`` holds in each world of this example."""
+        holds = self._rules.get(rule)
+        if holds is None:
             holds = np.ones(len(self.weights), dtype=bool)
             for lit in rule.literals:
                 col = self._lits.get(lit)
@@ -374,12 +409,27 @@ class _Example:
                     col = atom[:, self.i] if atom.shape[1] > 1 else atom[:, 0]
                     col = self._lits[lit] = np.broadcast_to(~col if lit.negated else col, self.weights.shape)
                 holds &= col
-            out |= holds
-        return float(np.clip((out * self.weights).sum(), 0.0, 1.0))
+            self._rules[rule] = holds
+        return holds
+
+    def q(self, rules: Sequence[Rule]) -> float:
+        """P(some rule holds) for this example."""
+        key = tuple(rules)
+        got = self._q.get(key)
+        if got is None:
+            out = np.zeros(len(self.weights), dtype=bool)
+            for rule in key:
+                out |= self._truth(rule)
+            got = self._q[key] = min(max(float((out * self.weights).sum()), 0.0), 1.0)
+        return got
 
     def nll(self, rules: Sequence[Rule]) -> float:
         """This example's likelihood term under ``rules``."""
-        return float(self.model.nll_terms(self.t, np.array(self.q(rules))))
+        key = tuple(rules)
+        got = self._nll.get(key)
+        if got is None:
+            got = self._nll[key] = float(self.model.nll_terms(self.t, np.array(self.q(key))))
+        return got
 
     def nll_lo(self, rules: Sequence[Rule]) -> tuple[float, float]:
         """(the term under ``rules``, the least term any superset of ``rules`` could give)."""
@@ -426,7 +476,7 @@ def certify_greedy(trace: Trace, ev: Evidence, i: int, model: Model) -> Trace | 
         value = d.value + one.nll(rest) - one.nll(d.current)
         if abs(value) < SLACK or (value <= 0) != (d.value <= 0):
             return Partial(tuple(steps), stop)
-        drops.append(replace(d, value=value))
+        drops.append(Drop(d.current, d.rule, value))
     value = trace.objective + one.nll(trace.result)
     return Trace(tuple(steps), stop, tuple(drops), trace.result, trace.allow_weight, value, tuple(swaps))
 
@@ -446,4 +496,4 @@ def _certify_step(st: Step, one: _Example, w: float, improving: bool) -> Step | 
         if value < score + SLACK:
             return None
         twins.append((twin, value))
-    return replace(st, score=score, margin=st.margin - gap, twins=tuple(twins))
+    return Step(st.before, st.rule, score, st.margin - gap, tuple(twins))

@@ -74,8 +74,11 @@ class Model:
     def nll_terms(self, t: np.ndarray, q: np.ndarray) -> np.ndarray:
         """Per-example ``-log P(t_i | q_i)`` (broadcast over leading axes of ``q``)."""
         p = self.noise + (1 - 2 * self.noise) * q
-        with np.errstate(divide="ignore"):
+        if self.noise > 0:  # then 0 < p < 1: no logarithm of 0
             out: np.ndarray = -(t * np.log(p) + (1 - t) * np.log1p(-p))
+            return out
+        with np.errstate(divide="ignore"):
+            out = -(t * np.log(p) + (1 - t) * np.log1p(-p))
         return out
 
     def best_q(self, t: np.ndarray) -> np.ndarray:

@@ -8,7 +8,7 @@ from dataclasses import replace
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, example, given, settings
 from hypothesis import strategies as st
 
 from ownctl.config import LearnConfig, Settings
@@ -95,6 +95,31 @@ def test_best_rule_is_the_brute_force_optimum(rows, base_size: int) -> None:
 @given(examples, st.integers(0, 1))
 def test_with_a_charge_per_negation_best_rule_is_still_the_brute_force_optimum(rows, base_size: int) -> None:
     _best_rule_case(rows, base_size, negation_cost=0.7)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(examples, st.integers(0, 1), st.sampled_from((0.0, 0.7)))
+# three objects alike, one allowed: the best rule is the empty one, and the runner-up refines one
+# of its twins (literals every object has), which are never searched
+@example([(0.0, 0.0, "blue", False, 0.0), (0.0, 0.0, "blue", False, 1.0), (0.0, 0.0, "blue", False, 1.0)],
+         0, 0.0)
+def test_the_bounds_of_a_search_that_must_lower_the_objective_hold(rows, base_size: int,
+                                                                   negation_cost: float) -> None:
+    """With ``accept`` 0 (as when the greedy covering looks for one more rule) subtrees are cut
+    earlier; the bounds a certificate relies on still hold for every rule (brute force)."""
+    ev = evidence_of(rows)
+    atoms = tuple(VOCAB.atoms())
+    model = replace(model_for(atoms, 3), negation_cost=negation_cost)
+    base = [Rule("trash", (atoms[2],))][:base_size]
+    found = exact.best_rule(ev, "trash", base, atoms, model, 3, accept=0.0)
+    start = exact.objective(model, ev, base)
+    scored = [(exact.objective(model, ev, [*base, r]) - start, r) for r in all_rules(atoms, 3)]
+    if found.rule is None:
+        assert min(s for s, _ in scored) >= -1e-9 and found.lower <= min(s for s, _ in scored) + 1e-9
+    else:
+        others = [s for s, r in scored if r != found.rule and r not in found.twins]
+        assert found.score == pytest.approx(min(s for s, _ in scored), abs=1e-9)
+        assert found.runner_up <= min(others) + 1e-9
 
 
 @pytest.mark.slow
