@@ -341,8 +341,11 @@ class Choice:
 
 
 def _choose(runs: Sequence[Trace | None]) -> int:
-    """The run with the lowest objective (the first on ties)."""
-    return int(np.argmin([math.inf if r is None else r.objective for r in runs]))
+    """The run with the lowest objective, the first of those within SLACK of it: a certified run's
+    objective is a sum taken in another order than a search's, so exact ties differ by rounding."""
+    values = [math.inf if r is None else r.objective for r in runs]
+    least = min(values)
+    return next(k for k, v in enumerate(values) if v <= least + SLACK)
 
 
 def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[Literal], model: Model,
@@ -488,7 +491,9 @@ def _certify_step(st: Step, one: _Example, w: float, improving: bool) -> Step | 
     shift = w * (one.nll((*st.before, st.rule)) - now)
     gap = shift - w * (lo - now)
     score = st.score + shift
-    if (improving and score >= -SLACK) or (gap > 0 and gap >= st.margin - SLACK):
+    # the new margin is at least ``margin - gap``; a choice that was (or may become) a tie within
+    # SLACK was settled by the search's order among equal scores, which one more example can change
+    if (improving and score >= -SLACK) or st.margin - gap < SLACK:
         return None
     twins = []
     for twin, value in st.twins:  # each twin's shift is known exactly
