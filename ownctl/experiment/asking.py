@@ -230,6 +230,7 @@ class Policy:
     min_gain: float = DEFAULT_MIN_GAIN
     kinds: tuple[str, ...] = TASK_KINDS
     temper: float = TASK_TEMPER
+    taught: bool = False
 
     def __post_init__(self) -> None:
         check_kinds(self.kinds)
@@ -245,7 +246,7 @@ def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ou
     asker = QuestionAsker(object_steps(get_task(cond.task).action), unit.strategy, unit.budget,
                           policy.min_gain, OracleAnswers(world),
                           np.random.default_rng([seed, unit.condition, unit.trial, 1]), policy.kinds,
-                          temper=policy.temper)
+                          taught=policy.taught, temper=policy.temper)
     report = run_task(mind, world, cond.task, KinematicExecutor(world), OracleInstructor(world), asker=asker)
     return report.mistakes, len(asker.asked)
 
