@@ -6,9 +6,10 @@ Keys: ``threshold`` and ``threshold.ACTION`` (obedience thresholds in [0, 1]), `
 probable rule set, ``map``, or on P(forbidden) marginalised over the posterior of rule sets,
 ``posterior``), ``ask.min_gain`` (the expected mistakes a question must save before the robot
 asks it during a run, a non-negative number), ``ask.kinds`` (the kinds of question the robot asks
-during ``run --ask``: some of act, may, whose, rule) and ``ask.temper`` (the power of the rule-set
-posteriors questions are valued on, in (0, 1], by ``run --ask`` and ``ownctl ask``; docs/asking.md,
-section 4).
+during ``run --ask``: some of act, may, whose, rule), ``ask.temper`` (the power of the rule-set
+posteriors questions are valued on, in (0, 1]) and ``ask.read`` (whether questions are valued with
+ownership read through the claim calibration the learner chose, a boolean), the last two for both
+``run --ask`` and ``ownctl ask`` (docs/asking.md, section 4).
 Stored values override the defaults of :class:`ownctl.config.Settings`.
 """
 
@@ -24,15 +25,16 @@ from ownctl.logic.vocab import ACTIONS
 FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.prediction")
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
 LEARNERS = ("ours", "paper")
-ASKING = ("ask.min_gain", "ask.kinds", "ask.temper")
+ASKING = ("ask.min_gain", "ask.kinds", "ask.temper", "ask.read")
 KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", *ASKING)
 ASK_MIN_GAIN = 0.05  # the default of ask.min_gain (ownctl.experiment.asking.DEFAULT_MIN_GAIN)
 ASK_KINDS = ("act", "may", "whose")  # the default of ask.kinds (ownctl.experiment.asking.TASK_KINDS)
 ASK_TEMPER = 0.5  # the default of ask.temper (ownctl.experiment.asking.TASK_TEMPER)
+ASK_READ = True  # the default of ask.read (ownctl.experiment.asking.TASK_READ)
 DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,
                             "learner": Settings().learn.learner, "decide.rules": Settings().decide_rules,
                             "ask.min_gain": ASK_MIN_GAIN, "ask.kinds": list(ASK_KINDS),
-                            "ask.temper": ASK_TEMPER}
+                            "ask.temper": ASK_TEMPER, "ask.read": ASK_READ}
 TRUE = ("true", "yes", "on", "1")
 FALSE = ("false", "no", "off", "0")
 
@@ -80,10 +82,10 @@ def temper(value: float | str) -> float:
     return check_temper(number)
 
 
-def asking(stored: dict[str, Any]) -> tuple[float, tuple[str, ...], float]:
-    """(ask.min_gain, ask.kinds, ask.temper): the stored values, else the defaults."""
+def asking(stored: dict[str, Any]) -> tuple[float, tuple[str, ...], float, bool]:
+    """(ask.min_gain, ask.kinds, ask.temper, ask.read): the stored values, else the defaults."""
     return (float(stored.get("ask.min_gain", ASK_MIN_GAIN)), tuple(stored.get("ask.kinds", ASK_KINDS)),
-            float(stored.get("ask.temper", ASK_TEMPER)))
+            float(stored.get("ask.temper", ASK_TEMPER)), bool(stored.get("ask.read", ASK_READ)))
 
 
 def parse_value(key: str, text: str) -> Any:
@@ -107,7 +109,7 @@ def parse_value(key: str, text: str) -> Any:
         if text not in LEARNERS:
             raise BadValue(f"unknown learner {text!r}; valid learners: {', '.join(LEARNERS)}", LEARNERS)
         return text
-    if key in FLAGS:
+    if key in (*FLAGS, "ask.read"):
         if text.lower() in TRUE:
             return True
         if text.lower() in FALSE:

@@ -102,6 +102,10 @@ def test_ask_values_questions_at_the_configured_temper(world: Ownctl) -> None:
         [round(q["gain"], 6) for q in exact["questions"]], round(exact["expected_mistakes"], 6))
     world("config", "set", "ask.temper", "default")
     assert world.json("ask", "--task", "trashAll", "--top", "3") == exact
+    assert exact["read"] is True
+    world("config", "set", "ask.read", "false")
+    assert world.json("config", "get")["ask.read"] is False
+    assert world.json("ask", "--task", "trashAll", "--top", "3")["read"] is False
 
 
 def test_run_asks_only_the_configured_kinds(ownctl: Ownctl, tmp_path: Path) -> None:
@@ -124,7 +128,7 @@ def test_bad_inputs_are_one_line_and_write_nothing(world: Ownctl) -> None:
                  ("config", "set", "ask.min_gain", "nan"), ("config", "set", "ask.min_gain", "lots"),
                  ("config", "set", "ask.kinds", "act,dance"), ("config", "set", "ask.kinds", ","),
                  ("config", "set", "ask.temper", "0"), ("config", "set", "ask.temper", "lots"),
-                 ("config", "set", "ask.temper", "nan"),
+                 ("config", "set", "ask.temper", "nan"), ("config", "set", "ask.read", "maybe"),
                  ("owners", "can", "--coverage", "1.5"), ("experiment", "task", "--ask", "1,x")):
         result = world(*args, code=1)
         assert len(result.stderr.strip().splitlines()) == 1, (args, result.stderr)

@@ -8,11 +8,12 @@ import copy
 import numpy as np
 import pytest
 
-from ownctl.app.settings import ASK_KINDS, ASK_MIN_GAIN, ASK_TEMPER
+from ownctl.app.settings import ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.asking import (
     DEFAULT_MIN_GAIN,
     TASK_KINDS,
+    TASK_READ,
     TASK_TEMPER,
     OracleAnswers,
     Policy,
@@ -45,8 +46,10 @@ def test_kinds_are_parsed_and_checked() -> None:
 
 
 def test_the_store_settings_default_to_the_task_askers_policy() -> None:
-    assert (ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER) == (DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER)
-    assert Policy() == Policy(ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER)
+    assert (ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ) == (DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER,
+                                                                TASK_READ)
+    assert Policy() == Policy(ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, read=ASK_READ)
+    assert QuestionAsker(STEPS).read == TASK_READ
 
 
 @pytest.mark.slow
