@@ -1,15 +1,16 @@
 """Benchmark: where the task experiment's mistakes come from, and what questions could save at best.
 
-    python benchmarks/asking.py [--trials 8] [--budget 4] [--kinds act,may,whose] [--temper 0.5]
-        [--min-gain 0.05] [--hindsight] [--json]
+    python benchmarks/asking.py [--trials 8] [--seed 0] [--budget 4] [--kinds act,may,whose]
+        [--temper 0.5] [--min-gain 0.05] [--taught] [--as-given] [--hindsight] [--predictions] [--json]
 
 On the asking experiment's worlds (``ownctl experiment task --ask``: trial ``t`` of task ``c`` is
 the paper's blocks world drawn with ``[seed, c, t]``), for collectAll and trashAll:
 
 - **classes of mistakes**, with no question and with ``--budget`` questions of our strategy
   (``--kinds``: the kinds it may ask, ``--temper``: the power of the rule-set posteriors it values
-  them on, ``--min-gain``; the task asker's defaults; the strategy before them is ``--kinds
-  act,may,whose,rule --temper 1``): each mistake is taken just before the robot
+  them on, ``--min-gain``, ``--taught``, ``--as-given``: ownership not read through the learner's
+  claim calibration; the task asker's defaults otherwise; the strategy before them is ``--kinds
+  act,may,whose,rule --temper 1 --as-given``): each mistake is taken just before the robot
   acts, with the beliefs it decides on. ``first``: no permission yet (no question may be asked
   before the first one); ``ownership``: its learned rules decide right on the object's true owners
   but the true norms decide wrong on its believed ownership (so the ownership belief is to blame);
@@ -24,7 +25,11 @@ the paper's blocks world drawn with ``[seed, c, t]``), for collectAll and trashA
   the fewest actual mistakes over the rest of the task (the rest run on a fork of the Mind and a
   copy of the executor, no further question) is asked if it saves at least one, greedily. It reads
   the future, so no strategy that does not can do as well on average; it is slow (one run of the
-  rest of the task per candidate and object, about a minute per trial).
+  rest of the task per candidate and object, about a minute per trial);
+- ``--predictions`` (instead of the above): with no question, how well the expected-mistakes
+  model predicts each decision after the first permission: per task the decisions, the actual
+  mistakes, and the sum and log loss of P(wrong) with ownership as given and read as the learner
+  reads it (``ownctl.mind.ask.task_reading``), on the stated model's posterior and at ``--temper``.
 
 Prints the mean mistakes per task and, per class, the mistakes per task; ``--json`` one document.
 """
@@ -55,7 +60,15 @@ from ownctl.logic.prob import p_forbidden  # noqa: E402
 from ownctl.logic.rules import Norm, parse_rule  # noqa: E402
 from ownctl.logic.vocab import object_steps  # noqa: E402
 from ownctl.mind import Mind, Switches  # noqa: E402
-from ownctl.mind.ask import ALL_KINDS, Question, apply_answer, candidates  # noqa: E402
+from ownctl.mind.ask import (  # noqa: E402
+    ALL_KINDS,
+    IDENTITY,
+    Question,
+    apply_answer,
+    candidates,
+    expected_mistakes,
+    task_reading,
+)
 from ownctl.world.generator import paper_blocks_world  # noqa: E402
 from ownctl.world.model import World, make_frame  # noqa: E402
 
@@ -140,8 +153,38 @@ class Hindsight:
             self.asked.append(question)
 
 
+class Predictions:
+    """An asker that asks nothing and records, before each decision once the robot holds a
+    permission, P(wrong) of that decision as the expected-mistakes model gives it."""
+
+    def __init__(self, world: World, steps: Sequence[str], temper: float) -> None:
+        self.truth, self.steps, self.temper = TrueNorms(world), tuple(steps), temper
+        self.rows: list[tuple[int, float, float, float]] = []  # mistake, P(wrong): given, read, read at T
+
+    def before(self, mind: Mind, obj: int, remaining: Sequence[int]) -> None:
+        """Record the decision on ``obj`` and its predicted P(wrong)."""
+        if not any(mind.perms.values()):
+            return
+        forbidden, _ = mind.decide(self.steps[-1], obj, self.steps)
+        wrong = int(forbidden != self.truth.violated(obj, mind.objects[obj], self.steps))
+        reading = task_reading(mind, self.steps)
+        self.rows.append((wrong, *(float(expected_mistakes(mind, self.steps, [obj], t, r).p_wrong[0])
+                                   for t, r in ((1.0, IDENTITY), (1.0, reading), (self.temper, reading)))))
+
+
+def prediction_summary(rows: Sequence[tuple[int, float, float, float]], temper: float) -> dict[str, Any]:
+    """Decisions, mistakes, and per way of predicting the sum and mean log loss of P(wrong)."""
+    y = np.array([r[0] for r in rows], dtype=float)
+    out: dict[str, Any] = {"decisions": len(rows), "mistakes": int(y.sum())}
+    for k, name in enumerate(("as given", "read", f"read, temper {temper}"), start=1):
+        p = np.clip(np.array([r[k] for r in rows]), 1e-3, 1 - 1e-3)
+        loss = -np.mean(y * np.log(p) + (1 - y) * np.log(1 - p))
+        out[name] = {"sum": float(p.sum()), "log_loss": float(loss)}
+    return out
+
+
 def run(c: int, t: int, seed: int, mode: str, budget: int, kinds: Sequence[str], min_gain: float,
-        temper: float = TASK_TEMPER) -> tuple[int, list[str]]:
+        temper: float = TASK_TEMPER, taught: bool = False, read: bool = True) -> tuple[int, list[str]]:
     """(mistakes, their classes) of one trial: ``mode`` ours, own (owners known), rules (norms
     known), both, or hindsight."""
     task, world, mind = setup(c, t, seed)
@@ -156,12 +199,25 @@ def run(c: int, t: int, seed: int, mode: str, budget: int, kinds: Sequence[str],
     inner: Asker | None = None
     if mode == "ours" and budget:
         inner = QuestionAsker(steps, "ours", budget, min_gain, OracleAnswers(world),
-                              np.random.default_rng([seed, c, t, 1]), kinds=tuple(kinds), temper=temper)
+                              np.random.default_rng([seed, c, t, 1]), kinds=tuple(kinds), taught=taught,
+                              temper=temper, read=read)
     elif mode == "hindsight":
         inner = Hindsight(world, task, executor, budget, kinds)
     probe = Classifier(inner, world, steps)
     records = run_objects(mind, truth, task, executor, OracleInstructor(world), asker=probe)
     return sum(r.mistake for r in records), probe.classes
+
+
+def predict(c: int, trials: int, seed: int, temper: float) -> dict[str, Any]:
+    """``--predictions`` for task ``c`` over ``trials`` trials with no question."""
+    rows: list[tuple[int, float, float, float]] = []
+    for t in range(trials):
+        task, world, mind = setup(c, t, seed)
+        probe = Predictions(world, object_steps(task.action), temper)
+        run_objects(mind, TrueNorms(world), task, KinematicExecutor(world), OracleInstructor(world),
+                    asker=probe)
+        rows += probe.rows
+    return prediction_summary(rows, temper)
 
 
 def summary(results: list[tuple[int, list[str]]]) -> dict[str, Any]:
@@ -180,7 +236,10 @@ def main() -> None:
     parser.add_argument("--kinds", default=",".join(TASK_KINDS))
     parser.add_argument("--temper", type=float, default=TASK_TEMPER)
     parser.add_argument("--min-gain", type=float, default=0.05)
+    parser.add_argument("--taught", action="store_true")
+    parser.add_argument("--as-given", action="store_true")
     parser.add_argument("--hindsight", action="store_true")
+    parser.add_argument("--predictions", action="store_true")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
     kinds = [k.strip() for k in args.kinds.split(",")]
@@ -191,22 +250,33 @@ def main() -> None:
              ("ownership known", "own", 0), ("rules known", "rules", 0), ("both known", "both", 0)]
     if not args.budget:
         del modes[1]
-    if args.hindsight:
+    if args.predictions:
+        modes = []
+    elif args.hindsight:
         modes.append((f"hindsight, {args.budget} questions", "hindsight", args.budget))
     if not 0 < args.temper <= 1:
         parser.error(f"--temper must be in (0, 1], got {args.temper}")
     doc: dict[str, Any] = {"trials": args.trials, "seed": args.seed, "budget": args.budget,
-                           "kinds": kinds, "temper": args.temper, "min_gain": args.min_gain, "tasks": {}}
+                           "kinds": kinds, "temper": args.temper, "min_gain": args.min_gain,
+                           "taught": args.taught, "read": not args.as_given, "tasks": {}}
     for c, cond in enumerate(TASK_CONDITIONS):
         rows = {}
         for label, mode, budget in modes:
-            rows[label] = summary([run(c, t, args.seed, mode, budget, kinds, args.min_gain, args.temper)
-                                   for t in range(args.trials)])
+            rows[label] = summary([run(c, t, args.seed, mode, budget, kinds, args.min_gain, args.temper,
+                                       args.taught, not args.as_given) for t in range(args.trials)])
             if not args.json:
                 row = rows[label]
                 parts = ", ".join(f"{k} {v:.2f}" for k, v in row["classes"].items() if v)
                 print(f"{cond.name:10} {label:24} {row['mistakes']:.2f} mistakes per task ({parts})",
                       flush=True)
+        if args.predictions:
+            rows["predictions"] = predict(c, args.trials, args.seed, args.temper)
+            if not args.json:
+                pred = rows["predictions"]
+                parts = "; ".join(f"{k}: sum {v['sum']:.2f}, log loss {v['log_loss']:.3f}"
+                                  for k, v in pred.items() if isinstance(v, dict))
+                print(f"{cond.name:10} P(wrong) of {pred['decisions']} decisions, "
+                      f"{pred['mistakes']} mistakes ({parts})", flush=True)
         doc["tasks"][cond.name] = rows
     if args.json:
         print(json.dumps(doc))

@@ -44,16 +44,18 @@ def task_scope(mind: Any, task: str, objects: Sequence[str] | None) -> tuple[tup
 
 
 def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: int) -> dict[str, Any]:
-    from ownctl.mind.ask import best_questions, expected_mistakes
+    from ownctl.app.settings import asking
+    from ownctl.mind.ask import IDENTITY, best_questions, expected_mistakes, task_reading
 
     if top < 1:
         raise BadValue(f"--top must be at least 1, got {top}")
+    _, _, temper, read = asking(tx.meta.settings())
     mind = load(tx, now).mind
     steps, idx = task_scope(mind, task, objects)
-    before = expected_mistakes(mind, steps, idx)
-    ranked = best_questions(mind, steps, idx, top=top) if idx else []
+    before = expected_mistakes(mind, steps, idx, temper, task_reading(mind, steps) if read else IDENTITY)
+    ranked = best_questions(mind, steps, idx, top=top, temper=temper, read=read) if idx else []
     return {"task": task, "steps": list(steps), "objects": list(before.objects),
-            "expected_mistakes": before.total,
+            "expected_mistakes": before.total, "temper": temper, "read": read,
             "per_object": [{"object": n, "decision": "forbidden" if d else "permitted",
                             "p_forbidden": float(p), "p_wrong": float(w)}
                            for n, d, p, w in zip(before.objects, before.decisions, before.p_forbidden,

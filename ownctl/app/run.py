@@ -304,14 +304,15 @@ def run(
 
     asker = None
     if ask:
-        from ownctl.app.settings import ASK_MIN_GAIN
+        from ownctl.app.settings import asking
         from ownctl.experiment.asking import OracleAnswers, QuestionAsker
         from ownctl.logic.vocab import object_steps
 
         with ctx.read() as tx:
-            min_gain = float(tx.meta.settings().get("ask.min_gain", ASK_MIN_GAIN))
+            min_gain, kinds, temper, read = asking(tx.meta.settings())
         answers = OracleAnswers(world) if instructor == "oracle" else None
-        asker = QuestionAsker(object_steps(chosen.action), "ours", ask, min_gain, answers)
+        asker = QuestionAsker(object_steps(chosen.action), "ours", ask, min_gain, answers, kinds=kinds,
+                              temper=temper, read=read)
     try:
         report = run_task(mind, world, chosen, executor, teacher, on_step=saved, asker=asker)
     except OwnctlError as exc:

@@ -5,7 +5,11 @@ Keys: ``threshold`` and ``threshold.ACTION`` (obedience thresholds in [0, 1]), `
 ``learner`` (the rule learner: ``ours`` or ``paper``), ``decide.rules`` (decisions on the most
 probable rule set, ``map``, or on P(forbidden) marginalised over the posterior of rule sets,
 ``posterior``), ``ask.min_gain`` (the expected mistakes a question must save before the robot
-asks it during a run, a non-negative number; docs/asking.md, section 4).
+asks it during a run, a non-negative number), ``ask.kinds`` (the kinds of question the robot asks
+during ``run --ask``: some of act, may, whose, rule), ``ask.temper`` (the power of the rule-set
+posteriors questions are valued on, in (0, 1]) and ``ask.read`` (whether questions are valued with
+ownership read through the claim calibration the learner chose, a boolean), the last two for both
+``run --ask`` and ``ownctl ask`` (docs/asking.md, section 4).
 Stored values override the defaults of :class:`ownctl.config.Settings`.
 """
 
@@ -21,11 +25,16 @@ from ownctl.logic.vocab import ACTIONS
 FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.prediction")
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
 LEARNERS = ("ours", "paper")
-KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", "ask.min_gain")
+ASKING = ("ask.min_gain", "ask.kinds", "ask.temper", "ask.read")
+KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", *ASKING)
 ASK_MIN_GAIN = 0.05  # the default of ask.min_gain (ownctl.experiment.asking.DEFAULT_MIN_GAIN)
+ASK_KINDS = ("act", "may", "whose")  # the default of ask.kinds (ownctl.experiment.asking.TASK_KINDS)
+ASK_TEMPER = 0.5  # the default of ask.temper (ownctl.experiment.asking.TASK_TEMPER)
+ASK_READ = True  # the default of ask.read (ownctl.experiment.asking.TASK_READ)
 DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,
                             "learner": Settings().learn.learner, "decide.rules": Settings().decide_rules,
-                            "ask.min_gain": ASK_MIN_GAIN}
+                            "ask.min_gain": ASK_MIN_GAIN, "ask.kinds": list(ASK_KINDS),
+                            "ask.temper": ASK_TEMPER, "ask.read": ASK_READ}
 TRUE = ("true", "yes", "on", "1")
 FALSE = ("false", "no", "off", "0")
 
@@ -59,6 +68,26 @@ def min_gain(value: float | str) -> float:
     return number
 
 
+def temper(value: float | str) -> float:
+    """``value`` as the power of the rule-set posteriors, in (0, 1]; BadValue naming ask.temper
+    otherwise (the range is :func:`ownctl.mind.ask.check_temper`'s)."""
+    from ownctl.mind.ask import check_temper
+
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise BadValue(f"ask.temper must be a number in (0, 1], got {value!r}") from None
+    if math.isnan(number):
+        raise BadValue(f"ask.temper must be a number in (0, 1], got {value!r}")
+    return check_temper(number)
+
+
+def asking(stored: dict[str, Any]) -> tuple[float, tuple[str, ...], float, bool]:
+    """(ask.min_gain, ask.kinds, ask.temper, ask.read): the stored values, else the defaults."""
+    return (float(stored.get("ask.min_gain", ASK_MIN_GAIN)), tuple(stored.get("ask.kinds", ASK_KINDS)),
+            float(stored.get("ask.temper", ASK_TEMPER)), bool(stored.get("ask.read", ASK_READ)))
+
+
 def parse_value(key: str, text: str) -> Any:
     """The typed value of ``text`` for ``key``; ``default`` means "remove the override" (None)."""
     check_key(key)
@@ -70,11 +99,17 @@ def parse_value(key: str, text: str) -> Any:
         return decide_mode(text)
     if key == "ask.min_gain":
         return min_gain(text)
+    if key == "ask.kinds":
+        from ownctl.experiment.asking import parse_kinds
+
+        return list(parse_kinds(text))
+    if key == "ask.temper":
+        return temper(text)
     if key == "learner":
         if text not in LEARNERS:
             raise BadValue(f"unknown learner {text!r}; valid learners: {', '.join(LEARNERS)}", LEARNERS)
         return text
-    if key in FLAGS:
+    if key in (*FLAGS, "ask.read"):
         if text.lower() in TRUE:
             return True
         if text.lower() in FALSE:
@@ -86,7 +121,7 @@ def parse_value(key: str, text: str) -> Any:
 def effective(stored: dict[str, Any]) -> dict[str, Any]:
     """Every key with its value: stored, else default (per-action thresholds only when set)."""
     out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k))
-                           for k in ("threshold", "trust", "learner", "decide.rules", "ask.min_gain")}
+                           for k in ("threshold", "trust", "learner", "decide.rules", *ASKING)}
     out.update({k: bool(stored.get(k, False)) for k in FLAGS})
     out.update({k: v for k, v in sorted(stored.items()) if k.startswith("threshold.")})
     return out

@@ -14,7 +14,7 @@ from ownctl.errors import BadValue
 
 def run_ask(budgets: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
             json_out: bool, csv: str | None, plot: str | None, quiet: bool, kinds: str | None = None,
-            temper: float | None = None) -> None:
+            temper: float | None = None, read: bool | None = None) -> None:
     """Run the asking experiment and print its tables or one JSON document."""
     from ownctl.app import experiment_ask
 
@@ -23,7 +23,8 @@ def run_ask(budgets: str, trials: int, seed: int, jobs: int, world: str | None, 
             raise BadValue(f"{what} does not apply with --ask (the paper's blocks world, JSON or tables)")
     if learner != "ours":
         raise BadValue(f"--ask runs the default learner only, got --learner {learner!r}", ("ours",))
-    result = experiment_ask.run(budgets, trials, seed, jobs, task, plot, kinds=kinds, temper=temper)
+    result = experiment_ask.run(budgets, trials, seed, jobs, task, plot, kinds=kinds, temper=temper,
+                                read=read)
     if json_out:
         typer.echo(json.dumps(result, ensure_ascii=False))
     elif not quiet:
@@ -56,4 +57,6 @@ def render(result: dict[str, Any]) -> None:
                           f"{p['better']}, more in {p['worse']})")
     console.print(f"{result['trials']} trials per task, seed {result['seed']}, "
                   f"min gain {result['min_gain']}, ours asks {','.join(result['kinds'])} on the rule-set "
-                  f"posterior to the power {result['temper']}, in {result['seconds']:.1f} s")
+                  f"posterior to the power {result['temper']}, ownership "
+                  f"{'as the learner reads it' if result['read'] else 'as given'}, "
+                  f"in {result['seconds']:.1f} s")

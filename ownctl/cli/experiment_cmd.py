@@ -163,6 +163,10 @@ def task(
         "--ask-temper", metavar="T", help="With --ask: value ours' questions on the rule-set posterior "
         "raised to the power T in (0, 1] (1: the model's own posterior; default 0.5)."
     )] = None,
+    ask_read: Annotated[bool | None, typer.Option(
+        "--ask-read/--ask-as-given", help="With --ask: value ours' questions with ownership read "
+        "through the claim calibration the learner chose (default), or as it is given."
+    )] = None,
 ) -> None:
     """Table 3: collectAll and trashAll with a correcting instructor.
 
@@ -172,9 +176,10 @@ def task(
         from ownctl.cli.experiment_ask_cmd import run_ask
 
         run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, ask_kinds,
-                ask_temper)
+                ask_temper, ask_read)
         return
-    for flag, value in (("--ask-kinds", ask_kinds), ("--ask-temper", ask_temper)):
+    for flag, value in (("--ask-kinds", ask_kinds), ("--ask-temper", ask_temper),
+                        ("--ask-read/--ask-as-given", ask_read)):
         if value is not None:
             from ownctl.errors import BadValue
 

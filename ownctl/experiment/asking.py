@@ -64,6 +64,8 @@ DEFAULT_MIN_GAIN = 0.05  # the ask.min_gain default (ownctl.app.settings.ASK_MIN
 TASK_KINDS = ("act", "may", "whose")
 #: the power of the rule-set posteriors ``ours`` values questions on during a task (section 4)
 TASK_TEMPER = 0.5
+#: whether ``ours`` values questions with ownership read as the learner reads it (section 4)
+TASK_READ = True
 
 
 class OracleAnswers:
@@ -145,6 +147,7 @@ class QuestionAsker:
     kinds: tuple[str, ...] = TASK_KINDS
     taught: bool = False
     temper: float = TASK_TEMPER
+    read: bool = TASK_READ
     asked: list[Asked] = field(default_factory=list)
 
     def __post_init__(self) -> None:
@@ -160,10 +163,10 @@ class QuestionAsker:
             return None
         if self.strategy == "ours":
             seen = {a.question for a in self.asked}
-            pool = [q for q in candidates(mind, self.steps, remaining, self.kinds, temper=self.temper)
-                    if q not in seen]
+            pool = [q for q in candidates(mind, self.steps, remaining, self.kinds, temper=self.temper,
+                                          read=self.read) if q not in seen]
             best = best_questions(mind, self.steps, remaining, top=1, questions=pool,
-                                  taught=self.taught, temper=self.temper)
+                                  taught=self.taught, temper=self.temper, read=self.read)
             if not best or best[0].gain < self.min_gain:
                 return None
             return best[0].question, best[0].gain
@@ -225,11 +228,15 @@ class Unit:
 @dataclass(frozen=True)
 class Policy:
     """How ``ours`` asks in the experiment: the least gain worth a question, the kinds it may
-    ask, the power of the rule-set posteriors it values them on (docs/asking.md, section 4)."""
+    ask, the power of the rule-set posteriors it values them on, whether it values permission
+    questions on the decisions up to their object (``taught``) and whether the truth reads
+    ownership as the learner does (``read``; docs/asking.md, section 4)."""
 
     min_gain: float = DEFAULT_MIN_GAIN
     kinds: tuple[str, ...] = TASK_KINDS
     temper: float = TASK_TEMPER
+    taught: bool = False
+    read: bool = TASK_READ
 
     def __post_init__(self) -> None:
         check_kinds(self.kinds)
@@ -245,7 +252,7 @@ def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ou
     asker = QuestionAsker(object_steps(get_task(cond.task).action), unit.strategy, unit.budget,
                           policy.min_gain, OracleAnswers(world),
                           np.random.default_rng([seed, unit.condition, unit.trial, 1]), policy.kinds,
-                          temper=policy.temper)
+                          taught=policy.taught, temper=policy.temper, read=policy.read)
     report = run_task(mind, world, cond.task, KinematicExecutor(world), OracleInstructor(world), asker=asker)
     return report.mistakes, len(asker.asked)
 
@@ -277,7 +284,7 @@ def parse_budgets(text: str) -> tuple[int, ...]:
 def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int = 1,
                    tasks: Sequence[str] = ("collectAll", "trashAll"), min_gain: float = DEFAULT_MIN_GAIN,
                    progress: Callable[[int, int], None] | None = None, kinds: Sequence[str] = TASK_KINDS,
-                   temper: float = TASK_TEMPER) -> dict[str, Any]:
+                   temper: float = TASK_TEMPER, read: bool = TASK_READ) -> dict[str, Any]:
     """Mistakes per task and questions asked for every strategy and budget, on the same seeds.
 
     Budget 0 is one run per trial shared by the strategies (Table 3 itself). Returns the JSON
@@ -285,7 +292,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     mean number of questions asked, and the paired difference ours - entropy per budget.
     """
     check_settings(trials, jobs, "ours")
-    policy = Policy(min_gain, tuple(kinds), temper)
+    policy = Policy(min_gain, tuple(kinds), temper, read=read)
     names = [c.name for c in TASK_CONDITIONS]
     conds = [names.index(t) for t in tasks]
     units = [Unit(c, t, s, b) for c in conds for t in range(trials) for b in budgets
@@ -331,6 +338,6 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
         results.append({"task": names[c], "runs": rows, "paired": paired})
     return {"experiment": "task-ask", "trials": trials, "seed": seed, "jobs": jobs,
             "budgets": list(budgets), "strategies": list(STRATEGIES), "min_gain": min_gain,
-            "kinds": list(policy.kinds), "temper": policy.temper, "tasks": results,
+            "kinds": list(policy.kinds), "temper": policy.temper, "read": policy.read, "tasks": results,
             "world": "paper blocks world (Table 3's trials: budget 0 is Table 3)",
             "seconds": time.perf_counter() - start}

@@ -25,6 +25,8 @@ from typing import TypeVar
 import numpy as np
 
 from ownctl.errors import BadValue
+from ownctl.learn.calibration import CALIBRATIONS, IDENTITY, calibrate, calibrated
+from ownctl.learn.induce import Inducer
 from ownctl.learn.model import LABEL_NOISE
 from ownctl.learn.posterior import RulePosterior
 from ownctl.logic.frame import Frame
@@ -209,6 +211,38 @@ def _posterior(mind: Mind, step: str, temper: float) -> RulePosterior:
     return tempered(mind.rule_posterior(step), temper)
 
 
+Reading = tuple[float, float]  # a claim calibration (confidence, shift) of ownctl.learn.calibration
+
+
+def task_reading(mind: Mind, steps: Sequence[str]) -> Reading:
+    """The claim calibration through which the task's truth reads uncertain ownership
+    (docs/asking.md, section 1): the one of ``CALIBRATIONS`` under which the permissions of all of
+    ``steps`` together are most probable, as each step's learner measures it (its most probable
+    rule set's prior times likelihood, summed over the steps; the identity first on ties). A step
+    whose permissions do not depend on ownership scores every calibration alike, so the steps that
+    found evidence decide. The identity with the paper's learner, which reads claims as they are."""
+    if mind.settings.learn.learner != "ours":
+        return IDENTITY
+    totals = dict.fromkeys(CALIBRATIONS, 0.0)
+    for step in steps:
+        ev, _ = mind.evidence(step)
+        if ev.n == 0:
+            continue
+        for cal in CALIBRATIONS:
+            choice = Inducer(step, calibrated(ev, cal), mind.vocab, mind.settings.learn).traced(
+                tuple(mind.given(step)))
+            run = choice.runs[choice.chosen]
+            assert run is not None
+            totals[cal] += run.objective
+    return min(CALIBRATIONS, key=lambda cal: (round(totals[cal], 9), CALIBRATIONS.index(cal)))
+
+
+def _frame(mind: Mind, idx: Sequence[int], reading: Reading) -> Frame:
+    """The frame of the objects at ``idx`` with their posterior ownership read through ``reading``."""
+    frame = mind.frame().take(list(idx))
+    return frame if reading == IDENTITY else frame.with_own(calibrate(frame.own, *reading))
+
+
 def _set_table(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
     """(K, W, n) truth of each rule set of ``rp`` (minus its allow norms) in every world."""
     lay = _layout(rp)
@@ -257,21 +291,23 @@ def decisions(mind: Mind, steps: Sequence[str], idx: Sequence[int]) -> np.ndarra
 
 
 def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
-                      temper: float = EXACT) -> Expectation:
+                      temper: float = EXACT, reading: Reading = IDENTITY) -> Expectation:
     """The expected number of mistakes of deciding ``steps`` on ``objects`` on current beliefs.
 
     Truth per object: each step is forbidden by its permission's value when the object has one
     (the instructor said so), else by a rule set drawn from the step's posterior; ownership atoms are
     drawn from the posterior. P(forbidden) = 1 - E_w[prod_s (1 - f_s(w))], f_s(w) the step's
     probability of being forbidden in ownership world w (docs/asking.md, section 1). ``temper``:
-    the rule-set posteriors' power (:func:`tempered`; 1, the default, is the stated model's).
+    the rule-set posteriors' power (:func:`tempered`; 1, the default, is the stated model's);
+    ``reading``: the calibration the truth reads ownership through (:func:`task_reading`; the
+    decisions read it as it is, as the Mind decides).
     """
     idx = [mind.obj(o) for o in objects]
     names = tuple(mind.objects[i].name for i in idx)
     if not idx:
         empty = np.zeros(0)
         return Expectation(names, empty.astype(bool), empty, empty)
-    frame = mind.frame().take(idx)
+    frame = _frame(mind, idx, reading)
     worlds = worlds_for(mind, steps, frame)
     allowed = np.ones_like(worlds.weights)  # (W, n): P(no step forbidden | w)
     for s in steps:
@@ -288,7 +324,8 @@ def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | 
 
 
 # -- questions and their answers ------------------------------------------------------------------
-def owner_sets(mind: Mind, obj: int | str) -> list[tuple[tuple[str, ...], float]]:
+def owner_sets(mind: Mind, obj: int | str, reading: Reading = IDENTITY
+               ) -> list[tuple[tuple[str, ...], float]]:
     """The possible owner sets of an object with their posterior probability (independent atoms).
 
     Agents within SURE of 0 or 1 are taken as known; at most MAX_OWNER_AGENTS of the others (the
@@ -296,7 +333,7 @@ def owner_sets(mind: Mind, obj: int | str) -> list[tuple[tuple[str, ...], float]
     MIN_ANSWER are dropped and the rest renormalised (docs/asking.md, section 3).
     """
     i = mind.obj(obj)
-    p = mind.posterior()[i]
+    p = calibrate(mind.posterior()[i], *reading)
     agents = mind.agents
     unsure = [j for j in range(len(agents)) if SURE < p[j] < 1 - SURE]
     unsure = sorted(sorted(unsure, key=lambda j: (abs(p[j] - 0.5), j))[:MAX_OWNER_AGENTS])
@@ -320,24 +357,23 @@ def _normalised(items: Sequence[tuple[T, float]]) -> list[tuple[T, float]]:
     return [(a, p / z) for a, p in kept] if z > 0 else []
 
 
-def p_permission(mind: Mind, step: str, obj: int | str, temper: float = EXACT) -> float:
+def p_permission(mind: Mind, step: str, obj: int | str, temper: float = EXACT,
+                 reading: Reading = IDENTITY) -> float:
     """P(an instructor forbids ``step`` on the object): the posterior predictive P(forbidden),
     with the stated model's instructor noise."""
-    i = mind.obj(obj)
-    frame = mind.frame().take([i])
+    frame = _frame(mind, [mind.obj(obj)], reading)
     worlds = worlds_for(mind, [step], frame)
     q = float((worlds.weights * step_forbidden(_posterior(mind, step, temper), frame, worlds)).sum())
     return LABEL_NOISE + (1 - 2 * LABEL_NOISE) * min(max(q, 0.0), 1.0)
 
 
-def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str, temper: float = EXACT
-                                ) -> list[tuple[tuple[str, ...], float]]:
+def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str, temper: float = EXACT,
+                                reading: Reading = IDENTITY) -> list[tuple[tuple[str, ...], float]]:
     """P(each set of forbidden steps) for "may I ACTION OBJ?" answered step by step: the steps
     share the object's ownership worlds, their rule sets are independent given them, and each
     step's answer carries the stated model's instructor noise (docs/asking.md, section 2):
     ``P(B) = sum_w P(w) prod_s (g_s(w) if s in B else 1 - g_s(w))``, ``g_s = noise + (1 - 2 noise) f_s``."""
-    i = mind.obj(obj)
-    frame = mind.frame().take([i])
+    frame = _frame(mind, [mind.obj(obj)], reading)
     worlds = worlds_for(mind, steps, frame)
     g = [LABEL_NOISE + (1 - 2 * LABEL_NOISE)
          * np.clip(step_forbidden(_posterior(mind, s, temper), frame, worlds)[:, 0], 0.0, 1.0) for s in steps]
@@ -351,11 +387,12 @@ def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str
     return out
 
 
-def rule_answer_probabilities(mind: Mind, rule: Rule, temper: float = EXACT) -> dict[str, float]:
+def rule_answer_probabilities(mind: Mind, rule: Rule, temper: float = EXACT,
+                              reading: Reading = IDENTITY) -> dict[str, float]:
     """P(yes), P(no), P(partly) for "does RULE hold?" on the Mind's objects: yes when every object
     the rule describes is forbidden, no when none is, partly otherwise (rule sets from the action's
     posterior, ownership atoms independent per object)."""
-    frame = mind.frame()
+    frame = _frame(mind, range(len(mind.objects)), reading)
     rp = _posterior(mind, rule.action, temper)
     named, _ = relevant_atoms([[rule], *rp.sets, rp.allows])
     worlds = enumerate_worlds(frame, named, with_other=True)
@@ -371,23 +408,25 @@ def rule_answer_probabilities(mind: Mind, rule: Rule, temper: float = EXACT) -> 
     return {"yes": p_yes, "no": p_no, "partly": max(0.0, 1.0 - p_yes - p_no)}
 
 
-def answers(mind: Mind, question: Question, temper: float = EXACT) -> list[tuple[Answer, float]]:
+def answers(mind: Mind, question: Question, temper: float = EXACT,
+            reading: Reading = IDENTITY) -> list[tuple[Answer, float]]:
     """The possible answers to ``question`` with their predicted probabilities (summing to 1);
-    ``temper``: the rule-set posteriors' power (:func:`tempered`)."""
+    ``temper``: the rule-set posteriors' power (:func:`tempered`); ``reading``: the calibration the
+    truth reads ownership through (:func:`task_reading`)."""
     if question.kind == "whose":
         assert question.object is not None
-        return [(Answer(question, owners=o), p) for o, p in owner_sets(mind, question.object)]
+        return [(Answer(question, owners=o), p) for o, p in owner_sets(mind, question.object, reading)]
     if question.kind == "may":
         assert question.object is not None and question.action is not None
-        p = p_permission(mind, question.action, question.object, temper)
+        p = p_permission(mind, question.action, question.object, temper, reading)
         return _normalised([(Answer(question, forbid=True), p), (Answer(question, forbid=False), 1 - p)])
     if question.kind == "act":
         assert question.object is not None
         return _normalised([(Answer(question, forbids=b), p)
                             for b, p in action_answer_probabilities(mind, question.steps, question.object,
-                                                                    temper)])
+                                                                    temper, reading)])
     assert question.rule is not None
-    probs = rule_answer_probabilities(mind, question.rule, temper)
+    probs = rule_answer_probabilities(mind, question.rule, temper, reading)
     return _normalised([(Answer(question, holds=h), probs[h]) for h in HOLDS])
 
 
@@ -415,30 +454,36 @@ def apply_answer(mind: Mind, answer: Answer, speaker: str | None = None) -> None
 
 def value_of_information(mind: Mind, question: Question, steps: Sequence[str],
                          objects: Sequence[int | str], before: float | None = None,
-                         temper: float = EXACT) -> Scored:
+                         temper: float = EXACT, read: bool = False) -> Scored:
     """EM(now) - sum over answers of P(answer) EM(after teaching the answer to a fork of ``mind``),
-    answers and mistakes on the rule-set posteriors raised to ``temper`` (1: the stated model's)."""
-    now = expected_mistakes(mind, steps, objects, temper).total if before is None else before
+    answers and mistakes on the rule-set posteriors raised to ``temper`` (1: the stated model's);
+    ``read``: the truth reads ownership through :func:`task_reading` (now, and on each fork after
+    its answer), as the learner does; off, as it is given."""
+    reading = task_reading(mind, steps) if read else IDENTITY
+    now = expected_mistakes(mind, steps, objects, temper, reading).total if before is None else before
     rows = []
-    for answer, p in answers(mind, question, temper):
+    for answer, p in answers(mind, question, temper, reading):
         fork = mind.fork()
         apply_answer(fork, answer)
-        rows.append((answer, p, expected_mistakes(fork, steps, objects, temper).total))
+        then = task_reading(fork, steps) if read else IDENTITY
+        rows.append((answer, p, expected_mistakes(fork, steps, objects, temper, then).total))
     after = sum(p * em for _, p, em in rows)
     return Scored(question, now - after, now, tuple(rows))
 
 
 def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
                kinds: Sequence[str] = KINDS, top_objects: int = TOP_OBJECTS,
-               top_rules: int = TOP_RULES, action: str | None = None, temper: float = EXACT
-               ) -> list[Question]:
+               top_rules: int = TOP_RULES, action: str | None = None, temper: float = EXACT,
+               read: bool = False) -> list[Question]:
     """The questions worth scoring (docs/asking.md, section 3), on the first object of ``objects``
     (the one about to be acted on) and the ``top_objects`` objects whose decisions are most likely
     wrong (ties: task order): ``may`` for each step without a permission, ``act`` (``action``,
     default the last step) over those steps when there are two or more, and ``whose``; and
     ``rule`` on the ``top_rules`` rules of each step's posterior whose probability is nearest 1/2
-    (not yet stated, not certain); probabilities on the rule-set posteriors raised to ``temper``."""
-    exp = expected_mistakes(mind, steps, objects, temper)
+    (not yet stated, not certain); probabilities on the rule-set posteriors raised to ``temper``,
+    ownership read through :func:`task_reading` with ``read``."""
+    reading = task_reading(mind, steps) if read else IDENTITY
+    exp = expected_mistakes(mind, steps, objects, temper, reading)
     order = sorted(range(len(exp.objects)), key=lambda k: (-round(float(exp.p_wrong[k]), 12), k))
     top = [exp.objects[k] for k in order[:top_objects] if exp.p_wrong[k] > 0]
     chosen = list(dict.fromkeys([*exp.objects[:1], *top]))
@@ -449,7 +494,7 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
             out.append(Question("act", name, action or steps[-1], steps=open_steps))
         if "may" in kinds:
             out += [Question("may", name, s) for s in open_steps]
-        if "whose" in kinds and len(owner_sets(mind, name)) > 1:
+        if "whose" in kinds and len(owner_sets(mind, name, reading)) > 1:
             out.append(Question("whose", name))
     if "rule" in kinds:
         for s in steps:
@@ -475,28 +520,31 @@ def horizon(question: Question, names: Sequence[str]) -> int:
 
 def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], top: int = 3,
                    kinds: Sequence[str] = KINDS, questions: Sequence[Question] | None = None,
-                   taught: bool = False, temper: float = EXACT) -> list[Scored]:
+                   taught: bool = False, temper: float = EXACT, read: bool = False) -> list[Scored]:
     """The ``top`` questions of largest value of information, best first; equal gains (to 1e-9) in
     :meth:`Question.sort_key` order over ``objects``' order. ``taught``: the objects' permissions
     will be taught as each is attempted, so a permission question's value counts only the
     decisions up to its object (:func:`horizon`). ``temper``: value on the rule-set posteriors
-    raised to that power (:func:`tempered`; 1 is the stated model's posterior, exact)."""
+    raised to that power (:func:`tempered`; 1 is the stated model's posterior, exact). ``read``: the
+    truth reads ownership as the learner does (:func:`task_reading`)."""
     check_temper(temper)
-    pool = candidates(mind, steps, objects, kinds, temper=temper) if questions is None else list(questions)
+    pool = (candidates(mind, steps, objects, kinds, temper=temper, read=read) if questions is None
+            else list(questions))
     objs = list(objects)
     names = [mind.objects[mind.obj(o)].name for o in objs]
     if not taught:
-        before = expected_mistakes(mind, steps, objs, temper).total
-        scored = [value_of_information(mind, q, steps, objs, before, temper) for q in pool]
+        reading = task_reading(mind, steps) if read else IDENTITY
+        before = expected_mistakes(mind, steps, objs, temper, reading).total
+        scored = [value_of_information(mind, q, steps, objs, before, temper, read) for q in pool]
     else:
-        scored = [value_of_information(mind, q, steps, objs[: horizon(q, names)], temper=temper)
+        scored = [value_of_information(mind, q, steps, objs[: horizon(q, names)], temper=temper, read=read)
                   for q in pool]
     scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key(names)))
     return scored[:top]
 
 
-__all__ = ["ALL_KINDS", "HOLDS", "KINDS", "OTHER", "Answer", "Expectation", "Question", "Scored",
+__all__ = ["ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "OTHER", "Answer", "Expectation", "Question", "Scored",
            "action_answer_probabilities", "answers", "apply_answer", "best_questions", "candidates",
            "check_temper", "decisions", "expected_mistakes", "horizon", "owner_sets", "p_permission",
-           "rule_answer_probabilities", "step_forbidden", "tempered", "worlds_for",
+           "rule_answer_probabilities", "step_forbidden", "task_reading", "tempered", "worlds_for",
            "value_of_information"]

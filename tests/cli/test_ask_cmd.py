@@ -91,11 +91,44 @@ def test_run_with_the_oracle_answers_the_questions(ownctl: Ownctl) -> None:
     assert report["mistakes"] <= 4
 
 
+def test_ask_values_questions_at_the_configured_temper(world: Ownctl) -> None:
+    exact = world.json("ask", "--task", "trashAll", "--top", "3")
+    assert exact["temper"] == 0.5  # the task asker's default: one valuation for ask and run --ask
+    world("config", "set", "ask.temper", "1")
+    assert world.json("config", "get")["ask.temper"] == 1.0
+    power = world.json("ask", "--task", "trashAll", "--top", "3")
+    assert power["temper"] == 1.0
+    assert ([round(q["gain"], 6) for q in power["questions"]], round(power["expected_mistakes"], 6)) != (
+        [round(q["gain"], 6) for q in exact["questions"]], round(exact["expected_mistakes"], 6))
+    world("config", "set", "ask.temper", "default")
+    assert world.json("ask", "--task", "trashAll", "--top", "3") == exact
+    assert exact["read"] is True
+    world("config", "set", "ask.read", "false")
+    assert world.json("config", "get")["ask.read"] is False
+    assert world.json("ask", "--task", "trashAll", "--top", "3")["read"] is False
+
+
+def test_run_asks_only_the_configured_kinds(ownctl: Ownctl, tmp_path: Path) -> None:
+    path = tmp_path / "world.toml"
+    path.write_text(WORLD, encoding="utf-8")
+    ownctl("world", "load", str(path))
+    ownctl("forbid", "trash", "on", "wallet")
+    ownctl("config", "set", "ask.min_gain", "0")
+    assert ownctl.json("config", "get")["ask.kinds"] == ["act", "may", "whose"]
+    ownctl("config", "set", "ask.kinds", "whose, whose")
+    assert ownctl.json("config", "get")["ask.kinds"] == ["whose"]
+    listed = ownctl.json("run", "trashAll", "--kinematic", "--ask", "2", "--instructor", "none")
+    assert listed["questions"] and {q["kind"] for q in listed["questions"]} == {"whose"}
+
+
 def test_bad_inputs_are_one_line_and_write_nothing(world: Ownctl) -> None:
     before = world.digest()
     for args in (("ask", "--top", "0"), ("ask", "--task", "dance"), ("ask", "--objects", "nope"),
                  ("ask", "--put", "--as", "nobody"), ("run", "trashAll", "--kinematic", "--ask", "-1"),
                  ("config", "set", "ask.min_gain", "nan"), ("config", "set", "ask.min_gain", "lots"),
+                 ("config", "set", "ask.kinds", "act,dance"), ("config", "set", "ask.kinds", ","),
+                 ("config", "set", "ask.temper", "0"), ("config", "set", "ask.temper", "lots"),
+                 ("config", "set", "ask.temper", "nan"), ("config", "set", "ask.read", "maybe"),
                  ("owners", "can", "--coverage", "1.5"), ("experiment", "task", "--ask", "1,x")):
         result = world(*args, code=1)
         assert len(result.stderr.strip().splitlines()) == 1, (args, result.stderr)

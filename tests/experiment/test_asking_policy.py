@@ -8,8 +8,18 @@ import copy
 import numpy as np
 import pytest
 
+from ownctl.app.settings import ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER
 from ownctl.errors import BadValue, UnknownName
-from ownctl.experiment.asking import TASK_KINDS, OracleAnswers, Policy, QuestionAsker, parse_kinds
+from ownctl.experiment.asking import (
+    DEFAULT_MIN_GAIN,
+    TASK_KINDS,
+    TASK_READ,
+    TASK_TEMPER,
+    OracleAnswers,
+    Policy,
+    QuestionAsker,
+    parse_kinds,
+)
 from ownctl.experiment.kinematic import KinematicExecutor
 from ownctl.experiment.oracle import OracleInstructor
 from ownctl.experiment.task import get_task, run_objects, run_task
@@ -33,6 +43,13 @@ def test_kinds_are_parsed_and_checked() -> None:
         QuestionAsker(STEPS, temper=0.0)
     with pytest.raises(UnknownName, match="question kind"):
         Policy(kinds=("whence",))
+
+
+def test_the_store_settings_default_to_the_task_askers_policy() -> None:
+    assert (ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ) == (DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER,
+                                                                TASK_READ)
+    assert Policy() == Policy(ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, read=ASK_READ)
+    assert QuestionAsker(STEPS).read == TASK_READ
 
 
 @pytest.mark.slow

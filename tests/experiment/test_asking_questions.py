@@ -55,8 +55,10 @@ def test_ours_asks_after_the_first_permission_the_best_taught_question() -> None
     mind.permit("trash", "o0", 1.0)
     mind.permit("pickUp", "o0", 0.0)
     remaining = remaining[1:]
-    pool = candidates(mind, STEPS, remaining, ALL_KINDS)
-    want = best_questions(mind, STEPS, remaining, top=1, questions=pool, taught=True)[0]
+    pool = candidates(mind, STEPS, remaining, ALL_KINDS, read=True)
+    want = best_questions(mind, STEPS, remaining, top=1, questions=pool, taught=True, read=True)[0]
+    given = best_questions(mind, STEPS, remaining, top=1, questions=pool, taught=True)[0]
     asker.before(mind, 1, remaining)
     assert [a.question for a in asker.asked] == [want.question]
-    assert asker.asked[0].gain == want.gain
+    assert asker.asked[0].gain == want.gain  # valued with ownership read as the learner reads it
+    assert want.gain != given.gain

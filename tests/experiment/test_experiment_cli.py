@@ -70,6 +70,7 @@ def test_quiet_prints_nothing() -> None:
         (["task", "--task", "tidyAll"], "unknown task 'tidyAll'"),
         (["ownership", "--world", "no/such/world.toml"], "does not exist"),
         (["task", "--ask-temper", "0.5"], "--ask-temper applies only with --ask"),
+        (["task", "--ask-as-given"], "--ask-read/--ask-as-given applies only with --ask"),
         (["task", "--ask", "1", "--ask-temper", "0"], "must be in (0, 1]"),
         (["task", "--ask", "1", "--ask-kinds", "act,why"],
          "unknown question kind 'why'; known question kinds: act, may, rule, whose"),
@@ -129,3 +130,12 @@ def test_same_numbers_under_another_hash_seed() -> None:
         assert proc.returncode == 0, proc.stderr
         outs.append(proc.stdout)
     assert outs[0] == outs[1]
+
+
+@pytest.mark.slow
+def test_the_asking_experiment_reports_how_ours_reads_ownership() -> None:
+    res = run("task", "--ask", "1", "--trials", "1", "--task", "trashAll", "--ask-as-given", "--json")
+    assert res.exit_code == 0, res.stderr
+    doc = json.loads(res.stdout)
+    assert (doc["read"], doc["temper"], doc["kinds"]) == (False, 0.5, ["act", "may", "whose"])
+    assert {r["strategy"] for r in doc["tasks"][0]["runs"]} == {"ours", "entropy", "random"}

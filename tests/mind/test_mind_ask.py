@@ -19,6 +19,8 @@ from ownctl.errors import BadValue
 from ownctl.experiment.kinematic import KinematicExecutor
 from ownctl.experiment.student import t_quantile
 from ownctl.experiment.task import SilentInstructor, run_task
+from ownctl.learn.calibration import CALIBRATIONS, IDENTITY, calibrate
+from ownctl.learn.induce import calibrated_inducer
 from ownctl.learn.model import LABEL_NOISE
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
 from ownctl.logic.vocab import object_steps
@@ -35,6 +37,7 @@ from ownctl.mind.ask import (
     owner_sets,
     rule_answer_probabilities,
     step_forbidden,
+    task_reading,
     tempered,
     value_of_information,
     worlds_for,
@@ -119,9 +122,21 @@ def brute_forbidden(mind: Mind, step: str, i: int, owners: frozenset[str], tempe
     return total
 
 
-def brute_em(mind: Mind, objects: list[int], temper: float = 1.0) -> float:
-    """Expected mistakes by listing, per object, every owner set and every step's rule sets."""
+def read_posterior(mind: Mind, reading: tuple[float, float] = IDENTITY) -> np.ndarray:
+    """The posterior ownership, each probability read through the calibration ``reading`` by hand."""
     post = mind.posterior()
+    if reading == IDENTITY:
+        return post
+    confidence, shift = reading
+    inner = (post > 0) & (post < 1)
+    safe = np.where(inner, post, 0.5)
+    return np.where(inner, 1 / (1 + np.exp(-(confidence * np.log(safe / (1 - safe)) + shift))), post)
+
+
+def brute_em(mind: Mind, objects: list[int], temper: float = 1.0,
+             reading: tuple[float, float] = IDENTITY) -> float:
+    """Expected mistakes by listing, per object, every owner set and every step's rule sets."""
+    post = read_posterior(mind, reading)
     total = 0.0
     for i in objects:
         p_forb = 0.0
@@ -155,9 +170,10 @@ def test_a_step_marginal_equals_the_posterior_predictive() -> None:
         assert np.allclose(marginal, mind.rule_posterior(s).p_forbidden(frame), atol=1e-12)
 
 
-def brute_answers(mind: Mind, q: Question, temper: float = 1.0) -> list[tuple[Answer, float]]:
+def brute_answers(mind: Mind, q: Question, temper: float = 1.0,
+                  reading: tuple[float, float] = IDENTITY) -> list[tuple[Answer, float]]:
     """The answers' probabilities by plain enumeration."""
-    post = mind.posterior()
+    post = read_posterior(mind, reading)
     if q.kind == "whose":
         i = mind.obj(q.object)
         return [(Answer(q, owners=tuple(sorted(o))), w) for o, w in owner_worlds(post[i])]
@@ -167,16 +183,17 @@ def brute_answers(mind: Mind, q: Question, temper: float = 1.0) -> list[tuple[An
         p = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * f
         return [(Answer(q, forbid=True), p), (Answer(q, forbid=False), 1 - p)]
     if q.kind == "act":
-        return brute_action_answers(mind, q, temper)
-    probs = brute_rule_answers(mind, q.rule, temper)
+        return brute_action_answers(mind, q, temper, reading)
+    probs = brute_rule_answers(mind, q.rule, temper, reading)
     return [(Answer(q, holds=h), p) for h, p in probs.items()]
 
 
-def brute_action_answers(mind: Mind, q: Question, temper: float = 1.0) -> list[tuple[Answer, float]]:
+def brute_action_answers(mind: Mind, q: Question, temper: float = 1.0,
+                         reading: tuple[float, float] = IDENTITY) -> list[tuple[Answer, float]]:
     """P(each set of forbidden steps): every owner set of the object, each step's answer true with
     its probability under that owner set and flipped with the instructor noise."""
     i = mind.obj(q.object)
-    post = mind.posterior()
+    post = read_posterior(mind, reading)
     out = []
     for bits in itertools.product((False, True), repeat=len(q.steps)):
         total = 0.0
@@ -189,10 +206,11 @@ def brute_action_answers(mind: Mind, q: Question, temper: float = 1.0) -> list[t
     return out
 
 
-def brute_rule_answers(mind: Mind, rule: Rule, temper: float = 1.0) -> dict[str, float]:
+def brute_rule_answers(mind: Mind, rule: Rule, temper: float = 1.0,
+                       reading: tuple[float, float] = IDENTITY) -> dict[str, float]:
     """P(yes/no/partly) over every rule set and every joint owner assignment of all objects."""
     rp = mind.rule_posterior(rule.action)
-    post = mind.posterior()
+    post = read_posterior(mind, reading)
     n = len(mind.objects)
     per = [owner_worlds(post[i]) for i in range(n)]
     fact = [facts(mind, i) for i in range(n)]
@@ -240,6 +258,60 @@ def test_value_of_information_equals_brute_force(seed: int, kind: str, temper: f
         assert scored.before == pytest.approx(before, abs=1e-9)
         assert scored.gain == pytest.approx(before - after, abs=1e-9), q.text()
         assert sum(p for _, p, _ in scored.answers) == pytest.approx(1.0)
+
+
+def learner_calibration(mind: Mind, step: str) -> tuple[float, float]:
+    """The calibration the learner read the step's permissions through (matched on its examples)."""
+    ev, _ = mind.evidence(step)
+    read = calibrated_inducer(step, ev, mind.vocab, mind.settings.learn, tuple(mind.given(step)))[0].ev
+    return next(c for c in CALIBRATIONS if np.allclose(calibrate(ev.frame.own, *c), read.frame.own))
+
+
+def test_the_task_reading_of_one_step_is_the_learners_calibration() -> None:
+    chosen = set()
+    for seed in range(6):
+        mind = small_mind(seed, n=5, perms=4)
+        for s in STEPS:
+            if mind.perms[s]:
+                assert task_reading(mind, [s]) == learner_calibration(mind, s), (seed, s)
+                chosen.add(task_reading(mind, [s]))
+        assert task_reading(mind, STEPS) in CALIBRATIONS
+    assert chosen == set(CALIBRATIONS)  # both readings occur: the comparison is not empty
+    exact = small_mind(0)
+    for i in range(len(exact.objects)):
+        for agent in AGENTS:
+            exact.claim(i, agent, 1.0, negated=i % 2 == 0)
+    assert task_reading(exact, STEPS) == IDENTITY
+
+
+@pytest.mark.slow
+def test_expected_mistakes_read_through_a_calibration_equal_brute_force() -> None:
+    mind = small_mind(1, n=3)
+    objects = list(range(3))
+    for reading in CALIBRATIONS:
+        exp = expected_mistakes(mind, STEPS, objects, reading=reading)
+        assert exp.total == pytest.approx(brute_em(mind, objects, reading=reading), abs=1e-9)
+    assert expected_mistakes(mind, STEPS, objects, reading=(4.0, -1.0)).total != pytest.approx(
+        expected_mistakes(mind, STEPS, objects).total, abs=1e-6)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("seed", "kind"), [(1, "whose"), (0, "may"), (2, "act")])
+def test_values_with_the_learners_reading_equal_brute_force(seed: int, kind: str) -> None:
+    mind = small_mind(seed, n=3)
+    objects = list(range(3))
+    q = QUESTIONS[kind]
+    now = task_reading(mind, STEPS)
+    scored = value_of_information(mind, q, STEPS, objects, read=True)
+    brute = [(a, p) for a, p in brute_answers(mind, q, reading=now) if p >= 1e-4]
+    z = sum(p for _, p in brute)
+    after = 0.0
+    for a, p in brute:
+        fork = mind.fork()
+        apply_answer(fork, a)
+        after += p / z * brute_em(fork, objects, reading=task_reading(fork, STEPS))
+    assert scored.before == pytest.approx(brute_em(mind, objects, reading=now), abs=1e-9)
+    assert scored.gain == pytest.approx(scored.before - after, abs=1e-9)
 
 
 @pytest.mark.slow
