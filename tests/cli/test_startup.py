@@ -111,3 +111,12 @@ def test_no_command_imports_scipy(store: str) -> None:
     for args in (["--db", store, "say", "whose is the mug?", "--json"], ["--db", store, "rules", "list"],
                  ["experiment", "ownership", "--trials", "1", "--quiet"]):
         assert _heavy_after(*args, heavy=("scipy", "sklearn")) == "", args
+
+
+def test_the_console_script_leaves_without_a_last_collection(store: str) -> None:
+    """Its heap is frozen when the command is done: the collector at exit walks nothing."""
+    probe = ("import gc, sys\nfrom ownctl.cli.main import run\nsys.argv = ['ownctl', *sys.argv[1:]]\n"
+             "try:\n    run()\nexcept SystemExit:\n    print('FROZEN:', gc.get_freeze_count() > 1000)\n")
+    result = subprocess.run([sys.executable, "-c", probe, "--db", store, "check", "trash", "mug"],
+                            capture_output=True, text=True, check=True)
+    assert "FROZEN: True" in result.stdout
