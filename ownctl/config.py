@@ -11,6 +11,16 @@ from dataclasses import dataclass, field
 #: posterior over rule sets (docs/learning.md).
 DECIDE_RULES = ("map", "posterior")
 
+#: How the robot asks during a task, by default (docs/asking.md, section 4): the expected mistakes
+#: a question must save before it is put (setting ``ask.min_gain``); the kinds of question asked
+#: (``ask.kinds``: no rule questions, whose usual answer during a task, "partly", teaches nothing);
+#: the power of the rule-set posteriors questions are valued on (``ask.temper``); and whether
+#: ownership is read as the learner reads it (``ask.read``).
+ASK_MIN_GAIN = 0.05
+ASK_KINDS = ("act", "may", "whose")
+ASK_TEMPER = 0.5
+ASK_READ = True
+
 
 @dataclass(frozen=True)
 class LearnConfig:

@@ -360,7 +360,8 @@ class Stored:
 
     def _cell_values(self, kinds: list[str], i: np.ndarray, j: np.ndarray,
                      post: dict[str, np.ndarray]) -> dict[str, list[Any]]:
-        """column -> stored value for each cell (i[k], j[k]), for the columns of ``kinds``."""
+        """column -> stored value for each cell (i[k], j[k]), for the columns of ``kinds`` (claim,
+        posterior; priors are written chunk by chunk)."""
         mind, now = self.mind, self.mind.now
         count = len(i)
         values: dict[str, list[Any]] = {}
@@ -375,10 +376,6 @@ class Stored:
                 meta = mind.claim_info.get((mind.objects[a].name, mind.agents[b])) or ClaimInfo()
                 p_of[k], speaker[k], trust[k], time[k] = float(claim[k]), meta.speaker, meta.trust, meta.time
             values.update(claim_p=p_of, claim_speaker=speaker, claim_trust=trust, claim_time=time)
-        if "prior" in kinds:
-            values["prior_p"] = mind.predicted[i, j].tolist()
-            values["prior_source"] = mind.prior_source[i, j].tolist()  # str already
-            values["prior_time"] = [now] * count
         if "posterior" in kinds:
             held: list[Any] = [None] * count
             stamp: list[Any] = [None] * count

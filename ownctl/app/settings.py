@@ -18,6 +18,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
+from ownctl.config import ASK_KINDS as ASK_KINDS  # the ask.* defaults have one home, the config
+from ownctl.config import ASK_MIN_GAIN as ASK_MIN_GAIN
+from ownctl.config import ASK_READ as ASK_READ
+from ownctl.config import ASK_TEMPER as ASK_TEMPER
 from ownctl.config import LearnConfig, Settings
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.vocab import ACTIONS
@@ -27,10 +31,6 @@ PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
 LEARNERS = ("ours", "paper")
 ASKING = ("ask.min_gain", "ask.kinds", "ask.temper", "ask.read")
 KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", *ASKING)
-ASK_MIN_GAIN = 0.05  # the default of ask.min_gain (ownctl.experiment.asking.DEFAULT_MIN_GAIN)
-ASK_KINDS = ("act", "may", "whose")  # the default of ask.kinds (ownctl.experiment.asking.TASK_KINDS)
-ASK_TEMPER = 0.5  # the default of ask.temper (ownctl.experiment.asking.TASK_TEMPER)
-ASK_READ = True  # the default of ask.read (ownctl.experiment.asking.TASK_READ)
 DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,
                             "learner": Settings().learn.learner, "decide.rules": Settings().decide_rules,
                             "ask.min_gain": ASK_MIN_GAIN, "ask.kinds": list(ASK_KINDS),

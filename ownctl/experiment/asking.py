@@ -33,7 +33,7 @@ from typing import Any
 
 import numpy as np
 
-from ownctl.config import LearnConfig, Settings
+from ownctl.config import ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER, LearnConfig, Settings
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.kinematic import KinematicExecutor
 from ownctl.experiment.online import TASK_CONDITIONS
@@ -58,14 +58,8 @@ from ownctl.world.generator import paper_blocks_world
 from ownctl.world.model import World
 
 STRATEGIES = ("ours", "entropy", "random")
-DEFAULT_MIN_GAIN = 0.05  # the ask.min_gain default (ownctl.app.settings.ASK_MIN_GAIN)
-#: what ``ours`` asks during a task (docs/asking.md, section 4): no rule questions, whose usual
-#: answer there, "partly", teaches nothing
-TASK_KINDS = ("act", "may", "whose")
-#: the power of the rule-set posteriors ``ours`` values questions on during a task (section 4)
-TASK_TEMPER = 0.5
-#: whether ``ours`` values questions with ownership read as the learner reads it (section 4)
-TASK_READ = True
+#: how ``ours`` asks during a task by default: the defaults of the ask.* settings
+DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER, TASK_READ = ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ
 
 
 class OracleAnswers:

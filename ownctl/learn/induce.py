@@ -192,23 +192,32 @@ class Inducer:
         return subtract(rules, result.rule if result.success else given, self._merge)
 
 
-def calibrated_inducer(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
-                       given: Sequence[Rule], new: int | None = None) -> tuple[Inducer, exact.Choice]:
-    """Ours: the inducer over ``ev`` read through the claim calibration under which the stored
-    permissions are most probable (:mod:`ownctl.learn.calibration`), and its re-induction trace
-    around the ``given`` rules. Each calibration's trace is certified from, and memoised beside,
-    the same calibration's trace without example ``new``; the objectives compared are those of
-    the examples in canonical order, so the choice depends only on the set of permissions."""
-    best: tuple[Inducer, exact.Choice, float] | None = None
+def calibration_choices(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
+                        given: Sequence[Rule], new: int | None = None
+                        ) -> dict[tuple[float, float], tuple[Inducer, exact.Choice, float]]:
+    """Per claim calibration worth trying on ``ev`` (:mod:`ownctl.learn.calibration`; the identity
+    alone when no ownership is uncertain), in order: the inducer over the examples so read, its
+    re-induction trace around the ``given`` rules, and the objective of that trace's most probable
+    rule set. Each calibration's trace is certified from, and memoised beside, the same
+    calibration's trace without example ``new``; the objectives are those of the examples in
+    canonical order, so they depend only on the set of permissions."""
+    out: dict[tuple[float, float], tuple[Inducer, exact.Choice, float]] = {}
     for calibration in calibration_candidates(ev):
         ind = Inducer(action, calibrated(ev, calibration), vocab, cfg)
         choice = ind.traced(given, new)
         run = choice.runs[choice.chosen]
         assert run is not None
-        if best is None or run.objective < best[2]:
-            best = (ind, choice, run.objective)
-    assert best is not None
-    return best[0], best[1]
+        out[calibration] = (ind, choice, run.objective)
+    return out
+
+
+def calibrated_inducer(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
+                       given: Sequence[Rule], new: int | None = None) -> tuple[Inducer, exact.Choice]:
+    """Ours: the inducer and trace of :func:`calibration_choices` whose rule set makes the stored
+    permissions most probable (the first calibration on ties)."""
+    ind, choice, _ = min(calibration_choices(action, ev, vocab, cfg, given, new).values(),
+                         key=lambda option: option[2])
+    return ind, choice
 
 
 def subtract(rules: Sequence[Rule], allow: Rule, merge=None) -> list[Rule]:  # type: ignore[no-untyped-def]

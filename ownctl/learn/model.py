@@ -27,6 +27,7 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Sequence
+from contextlib import nullcontext
 from dataclasses import dataclass
 
 import numpy as np
@@ -74,11 +75,9 @@ class Model:
     def nll_terms(self, t: np.ndarray, q: np.ndarray) -> np.ndarray:
         """Per-example ``-log P(t_i | q_i)`` (broadcast over leading axes of ``q``)."""
         p = self.noise + (1 - 2 * self.noise) * q
-        if self.noise > 0:  # then 0 < p < 1: no logarithm of 0
+        # with noise, 0 < p < 1: no logarithm of 0, and no error-state switch to pay for
+        with nullcontext() if self.noise > 0 else np.errstate(divide="ignore"):
             out: np.ndarray = -(t * np.log(p) + (1 - t) * np.log1p(-p))
-            return out
-        with np.errstate(divide="ignore"):
-            out = -(t * np.log(p) + (1 - t) * np.log1p(-p))
         return out
 
     def best_q(self, t: np.ndarray) -> np.ndarray:

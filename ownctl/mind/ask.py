@@ -25,8 +25,8 @@ from typing import TypeVar
 import numpy as np
 
 from ownctl.errors import BadValue
-from ownctl.learn.calibration import CALIBRATIONS, IDENTITY, calibrate, calibrated
-from ownctl.learn.induce import Inducer
+from ownctl.learn.calibration import CALIBRATIONS, IDENTITY, calibrate
+from ownctl.learn.induce import calibration_choices
 from ownctl.learn.model import LABEL_NOISE
 from ownctl.learn.posterior import RulePosterior
 from ownctl.logic.frame import Frame
@@ -228,12 +228,9 @@ def task_reading(mind: Mind, steps: Sequence[str]) -> Reading:
         ev, _ = mind.evidence(step)
         if ev.n == 0:
             continue
-        for cal in CALIBRATIONS:
-            choice = Inducer(step, calibrated(ev, cal), mind.vocab, mind.settings.learn).traced(
-                tuple(mind.given(step)))
-            run = choice.runs[choice.chosen]
-            assert run is not None
-            totals[cal] += run.objective
+        options = calibration_choices(step, ev, mind.vocab, mind.settings.learn, mind.given(step))
+        for cal in CALIBRATIONS:  # with no uncertain ownership, every calibration reads as the identity
+            totals[cal] += options.get(cal, options[IDENTITY])[2]
     return min(CALIBRATIONS, key=lambda cal: (round(totals[cal], 9), CALIBRATIONS.index(cal)))
 
 

@@ -92,13 +92,18 @@ categories = Table(
 
 #: The last times (absolute, store clock) one agent interacted with a chunk of object ids, packed
 #: (``ownctl/store/packed.py``: float64, NaN where it never did).
-touches = Table(
-    "touches", metadata,
-    Column("agent_id", Integer, _to("agents.id"), primary_key=True),
-    Column("chunk", Integer, primary_key=True),
-    Column("times", LargeBinary, nullable=False),
-    sqlite_with_rowid=False,
-)
+def _per_agent_chunks(name: str, *columns: Column[object]) -> Table:
+    """A table of packed values per (agent, chunk of object ids) (``ownctl/store/packed.py``)."""
+    return Table(
+        name, metadata,
+        Column("agent_id", Integer, _to("agents.id"), primary_key=True),
+        Column("chunk", Integer, primary_key=True),
+        *columns,
+        sqlite_with_rowid=False,
+    )
+
+
+touches = _per_agent_chunks("touches", Column("times", LargeBinary, nullable=False))
 
 #: A named axis-aligned box ``(x0, y0, x1, y1)`` on the table plane.
 areas = Table(
@@ -132,14 +137,11 @@ ownership = Table(
 #: The predicted priors of one agent about a chunk of object ids (``ownctl/store/packed.py``):
 #: probabilities (float64, NaN where none is held) and source codes, packed, and the chunk's last
 #: write time.
-priors = Table(
-    "priors", metadata,
-    Column("agent_id", Integer, _to("agents.id"), primary_key=True),
-    Column("chunk", Integer, primary_key=True),
+priors = _per_agent_chunks(
+    "priors",
     Column("p", LargeBinary, nullable=False),
     Column("source", LargeBinary, nullable=False),
     Column("time", Float, nullable=False),
-    sqlite_with_rowid=False,
 )
 
 #: The store generation: one row (id 1) whose ``value`` every write transaction advances.

@@ -431,9 +431,13 @@ class Touches(_Part):
                 for a, b in zip(i.tolist(), j.tolist(), strict=True)}
 
     def counts(self) -> dict[int, int]:
-        """agent id -> how many objects it has interacted with."""
-        _, who, times = self.table()
-        return dict(zip(who, (~np.isnan(times)).sum(axis=0).tolist(), strict=True))
+        """agent id -> how many objects it has interacted with (a removed object's cells are
+        emptied, so each chunk counts its own)."""
+        out: dict[int, int] = {}
+        for agent, data in self.conn.exec_driver_sql(f"SELECT agent_id, {TOUCHES.arrays[0][0]} FROM touches"):
+            held = int(np.count_nonzero(~np.isnan(packing.decode(data, TOUCHES.arrays[0][1]))))
+            out[int(agent)] = out.get(int(agent), 0) + held
+        return out
 
     def times(
         self, object_ids: Sequence[int] | None = None, agent_ids: Sequence[int] | None = None
@@ -513,12 +517,6 @@ class Beliefs(_Part):
         for start in range(0, len(ids), CHUNK):
             out.extend(self._rows(query.where(ownership.c.object_id.in_(ids[start : start + CHUNK]))))
         return out
-
-    def claim_counts(self) -> dict[int, int]:
-        """agent id -> how many objects carry a claim about it."""
-        c = ownership.c
-        query = select(c.agent_id, func.count()).where(c.claim_p.is_not(None)).group_by(c.agent_id)
-        return {int(a): int(n) for a, n in self._rows(query)}
 
     def priors(self, object_ids: Sequence[int], agent_ids: Sequence[int]) -> PriorTable:
         """The priors of ``object_ids`` x ``agent_ids``, read chunk by chunk (``ownctl/store/packed.py``)."""

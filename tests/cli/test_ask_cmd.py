@@ -17,13 +17,18 @@ owners = { xuan = 1.0 }
 """
 
 
-@pytest.fixture
-def world(tmp_path: Path, ownctl: Ownctl) -> Ownctl:
+def loaded(ownctl: Ownctl, tmp_path: Path) -> Ownctl:
+    """The four-block world loaded, with the wallet forbidden to trash."""
     path = tmp_path / "world.toml"
     path.write_text(WORLD, encoding="utf-8")
     ownctl("world", "load", str(path))
     ownctl("forbid", "trash", "on", "wallet")
-    ownctl("allow", "trash", "on", "cup")
+    return ownctl
+
+
+@pytest.fixture
+def world(tmp_path: Path, ownctl: Ownctl) -> Ownctl:
+    loaded(ownctl, tmp_path)("allow", "trash", "on", "cup")
     return ownctl
 
 
@@ -109,10 +114,7 @@ def test_ask_values_questions_at_the_configured_temper(world: Ownctl) -> None:
 
 
 def test_run_asks_only_the_configured_kinds(ownctl: Ownctl, tmp_path: Path) -> None:
-    path = tmp_path / "world.toml"
-    path.write_text(WORLD, encoding="utf-8")
-    ownctl("world", "load", str(path))
-    ownctl("forbid", "trash", "on", "wallet")
+    loaded(ownctl, tmp_path)
     ownctl("config", "set", "ask.min_gain", "0")
     assert ownctl.json("config", "get")["ask.kinds"] == ["act", "may", "whose"]
     ownctl("config", "set", "ask.kinds", "whose, whose")

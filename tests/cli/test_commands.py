@@ -56,6 +56,17 @@ def test_objects(ownctl: Ownctl) -> None:
     assert [o["name"] for o in ownctl.json("object", "list")] == ["wallet"]
 
 
+def test_agent_list_counts_the_objects_each_agent_touched(table_world: Ownctl) -> None:
+    table_world("object", "touch", "wallet", "--by", "xuan")
+    table_world("object", "touch", "mug", "--by", "xuan")
+    table_world("object", "touch", "mug", "--by", "xuan", "--at", "400")  # the same object again
+    table_world("object", "touch", "mug", "--by", "alexis")
+    before = {a["name"]: a["touched"] for a in table_world.json("agent", "list")}
+    table_world("object", "remove", "mug")
+    after = {a["name"]: a["touched"] for a in table_world.json("agent", "list")}
+    assert (before["xuan"], before["alexis"], after["xuan"], after["alexis"]) == (2, 1, 1, 0)
+
+
 def test_touch_uses_absolute_store_time(table_world: Ownctl) -> None:
     table_world("object", "touch", "wallet", "--by", "xuan")
     table_world("object", "touch", "mug", "--by", "alexis", "--at", "400")
