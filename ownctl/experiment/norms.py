@@ -2,8 +2,10 @@
 
 Each trial draws a new world, gives ownership claims for every object (exact, or noisy: each
 agent's label is 0.6 if it owns the object else 0.4, plus uniform noise of +-0.2), then permissions
-for a fraction of the objects, for every action with a true norm, one object at a time. Inference
-and prediction are off, as in the paper. The learned rules are scored against the true norms on all
+for a fraction of the objects, for every action with a true norm. Inference and prediction are off,
+as in the paper. Each action's permissions are taught together (:meth:`ownctl.mind.Mind.permit_all`):
+the default learner's rules depend only on the set of permissions, so learning once after the last
+gives the rules of learning after each, which the paper's learner still does. The learned rules are scored against the true norms on all
 objects with their true ownership.
 
 On a norm family (:class:`ownctl.world.families.NormFamily`) the same protocol gives permissions
@@ -91,16 +93,23 @@ def norms_setup(make_world: WorldFactory, cond: NormCondition, rng: np.random.Ge
 
 
 def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
-                rng: np.random.Generator, decide: str = "map") -> dict[str, Scores]:
+                rng: np.random.Generator, decide: str = "map", together: bool = True) -> dict[str, Scores]:
     """One trial of one condition; per-action scores of the learned rules (``decide``: scored on the
-    most probable rule set, ``map``, or marginalised over rule sets, ``posterior``)."""
+    most probable rule set, ``map``, or marginalised over rule sets, ``posterior``).
+
+    ``together``: each action's permissions are taught in one :meth:`Mind.permit_all`, which learns
+    after each only where the learner depends on their order (the paper's); otherwise every
+    permission is taught on its own, object by object. Both give the same rules."""
     setup = norms_setup(make_world, cond, rng)
     world = setup.world
     settings = Settings(learn=LearnConfig(learner=learner), decide_rules=decide)
     mind = Mind(world.agents, list(world.objects), world.areas, settings,
                 Switches(inference=False, prediction=False))
     mind.claims[:] = setup.claims
-    if not cond.baseline:
+    if not cond.baseline and together:
+        for action in setup.rules:  # each action's rules are learned from its own permissions only
+            mind.permit_all(action, [(int(obj), float(setup.answers[action][obj])) for obj in setup.chosen])
+    elif not cond.baseline:
         for obj in setup.chosen:
             for action in setup.rules:
                 mind.permit(action, int(obj), float(setup.answers[action][obj]))

@@ -598,16 +598,36 @@ class Mind:
 
         Ignored (None) while permissions are frozen; stored without induction while rules are.
         """
-        if self.switches.frozen_perms:
+        return self.permit_all(action, [(obj, value)], speaker)
+
+    def permit_all(self, action: str, given: Sequence[tuple[int | str, float]], speaker: str | None = None
+                   ) -> Outcome | None:
+        """Permissions for one action given together, as (object, value) in arrival order: stored,
+        then learned from once (the outcome of the last induction; None if none ran).
+
+        The default learner's rules depend only on the set of permissions (docs/learning.md), so
+        learning once after the last is learning after each; the paper's learner depends on their
+        order by design and learns after each, as :meth:`permit` does.
+        """
+        if self.switches.frozen_perms or not given:
             return None
-        i = self.obj(obj)
-        name = self.objects[i].name
         kept = self._keep_posteriors(action)
-        self.perms[action].pop(name, None)
-        self._seq += 1
-        self.perms[action][name] = Given(float(value), self._seq, self.objects[i], speaker, self.now)
-        self._changed()
-        self._rule_posteriors.update(kept)
+        once = self.settings.learn.learner == "ours"
+        out: Outcome | None = None
+        for obj, value in given:
+            i = self.obj(obj)
+            name = self.objects[i].name
+            self.perms[action].pop(name, None)
+            self._seq += 1
+            self.perms[action][name] = Given(float(value), self._seq, self.objects[i], speaker, self.now)
+            self._changed()
+            self._rule_posteriors.update(kept)
+            if not once:
+                out = self._learn_permission(action, kept)
+        return self._learn_permission(action, kept) if once else out
+
+    def _learn_permission(self, action: str, kept: dict[str, RulePosterior]) -> Outcome | None:
+        """Induce the action's rules after its newest permission (none while rules are frozen)."""
         if self.switches.frozen_rules:
             return None
         from ownctl.learn.induce import learn_permission
