@@ -30,25 +30,19 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from ownctl.experiment.norms import NORM_CONDITIONS, NormCondition, norms_setup  # noqa: E402
+from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, taught_mind  # noqa: E402
 from ownctl.learn import exact, induce  # noqa: E402
 from ownctl.logic.prob import p_forbidden  # noqa: E402
-from ownctl.mind import Mind, Switches  # noqa: E402
 from ownctl.world.families import norm_family  # noqa: E402
 
 
 def classify(family: int, c: int, t: int) -> list[tuple[str, float]]:
     """Per scored action of trial ``t`` of condition ``c`` on ``family``: ``right``, ``search`` or
     ``model``, and the objective of the learned rules minus that of the true norms."""
-    cond: NormCondition = NORM_CONDITIONS[c]
-    setup = norms_setup(norm_family(family), cond, np.random.default_rng([0, family, c, t]))
-    world = setup.world
-    mind = Mind(world.agents, list(world.objects), world.areas,
-                switches=Switches(inference=False, prediction=False))
-    mind.claims[:] = setup.claims
+    setup = norms_setup(norm_family(family), NORM_CONDITIONS[c], np.random.default_rng([0, family, c, t]))
+    mind = taught_mind(setup)
     out: list[tuple[str, float]] = []
     for action, true in setup.rules.items():
-        mind.permit_all(action, [(int(o), float(setup.answers[action][o])) for o in setup.chosen])
         learned = p_forbidden(mind.rules[action], setup.true_frame) >= 0.5
         if np.array_equal(learned, setup.answers[action] >= 0.5):
             out.append(("right", 0.0))

@@ -5,8 +5,8 @@ agent's label is 0.6 if it owns the object else 0.4, plus uniform noise of +-0.2
 for a fraction of the objects, for every action with a true norm. Inference and prediction are off,
 as in the paper. Each action's permissions are taught together (:meth:`ownctl.mind.Mind.permit_all`):
 the default learner's rules depend only on the set of permissions, so learning once after the last
-gives the rules of learning after each, which the paper's learner still does. The learned rules are scored against the true norms on all
-objects with their true ownership.
+gives the rules of learning after each, which the paper's learner still does. The learned rules
+are scored against the true norms on all objects with their true ownership.
 
 On a norm family (:class:`ownctl.world.families.NormFamily`) the same protocol gives permissions
 for, and scores, every action the family names, including those with no norm (where every
@@ -16,7 +16,7 @@ permission allows).
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -92,27 +92,36 @@ def norms_setup(make_world: WorldFactory, cond: NormCondition, rng: np.random.Ge
     return NormsSetup(world, claims, chosen, rules, answers, true_frame)
 
 
-def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
-                rng: np.random.Generator, decide: str = "map", together: bool = True) -> dict[str, Scores]:
-    """One trial of one condition; per-action scores of the learned rules (``decide``: scored on the
-    most probable rule set, ``map``, or marginalised over rule sets, ``posterior``).
+def taught_mind(setup: NormsSetup, learner: str = "ours", decide: str = "map", together: bool = True) -> Mind:
+    """A Mind of the trial's world given its claims and then its permissions, inference and
+    prediction off (``decide``: how its rules decide, ``decide.rules``).
 
     ``together``: each action's permissions are taught in one :meth:`Mind.permit_all`, which learns
     after each only where the learner depends on their order (the paper's); otherwise every
     permission is taught on its own, object by object. Both give the same rules."""
-    setup = norms_setup(make_world, cond, rng)
     world = setup.world
     settings = Settings(learn=LearnConfig(learner=learner), decide_rules=decide)
     mind = Mind(world.agents, list(world.objects), world.areas, settings,
                 Switches(inference=False, prediction=False))
     mind.claims[:] = setup.claims
-    if not cond.baseline and together:
+    if together:
         for action in setup.rules:  # each action's rules are learned from its own permissions only
             mind.permit_all(action, [(int(obj), float(setup.answers[action][obj])) for obj in setup.chosen])
-    elif not cond.baseline:
-        for obj in setup.chosen:
-            for action in setup.rules:
-                mind.permit(action, int(obj), float(setup.answers[action][obj]))
+        return mind
+    for obj in setup.chosen:
+        for action in setup.rules:
+            mind.permit(action, int(obj), float(setup.answers[action][obj]))
+    return mind
+
+
+def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
+                rng: np.random.Generator, decide: str = "map", together: bool = True) -> dict[str, Scores]:
+    """One trial of one condition; per-action scores of the learned rules (``decide``: scored on the
+    most probable rule set, ``map``, or marginalised over rule sets, ``posterior``; ``together``:
+    as :func:`taught_mind`). The baseline condition teaches nothing (allowing everything)."""
+    setup = norms_setup(make_world, cond, rng)
+    empty = replace(setup, chosen=setup.chosen[:0]) if cond.baseline else setup
+    mind = taught_mind(empty, learner, decide, together)
     frame = setup.true_frame
     return {a: rule_scores(setup.answers[a], mind.p_rules_on(a, frame)) for a in setup.rules}
 

@@ -5,14 +5,15 @@ permissions at once and learns after the last; the paper's learner learns after 
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from ownctl.config import LearnConfig, Settings
-from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, norms_trial
-from ownctl.mind import Mind, Switches
+from ownctl.experiment.norms import NORM_CONDITIONS, NormsSetup, norms_setup, norms_trial, taught_mind
+from ownctl.mind import Switches
 from ownctl.world.families import norm_family
 from ownctl.world.generator import paper_blocks_world
 
@@ -27,13 +28,9 @@ def test_a_trial_scores_the_same_with_permissions_together_or_one_at_a_time(cond
         assert together == apart
 
 
-def _mind(learner: str, seed: int) -> tuple[Mind, dict[str, np.ndarray], list[str]]:
+def _setup(seed: int, chosen: list[int]) -> NormsSetup:
     setup = norms_setup(paper_blocks_world, NORM_CONDITIONS[4], np.random.default_rng(seed))
-    world = setup.world
-    mind = Mind(world.agents, list(world.objects), world.areas,
-                Settings(learn=LearnConfig(learner=learner)), Switches(inference=False, prediction=False))
-    mind.claims[:] = setup.claims
-    return mind, setup.answers, [o.name for o in world.objects]
+    return replace(setup, chosen=np.asarray(chosen, dtype=int))
 
 
 @settings(max_examples=12, deadline=None)
@@ -41,20 +38,17 @@ def _mind(learner: str, seed: int) -> tuple[Mind, dict[str, np.ndarray], list[st
        learner=st.sampled_from(["ours", "paper"]))
 def test_permit_all_learns_the_rules_of_the_same_permissions_given_one_by_one(
         seed: int, order: list[int], size: int, learner: str) -> None:
-    chosen = order[:size]
-    one, answers, names = _mind(learner, seed)
-    every = _mind(learner, seed)[0]
-    for action, truth in answers.items():
-        for i in chosen:
-            one.permit(action, names[i], float(truth[i]))
-        every.permit_all(action, [(names[i], float(truth[i])) for i in chosen])
-        assert every.rules[action] == one.rules[action]
-        assert list(every.perms[action]) == list(one.perms[action])
+    setup = _setup(seed, order[:size])
+    together, apart = taught_mind(setup, learner), taught_mind(setup, learner, together=False)
+    for action in setup.rules:
+        assert together.rules[action] == apart.rules[action]
+        assert list(together.perms[action]) == list(apart.perms[action])
 
 
 def test_permit_all_stores_and_learns_nothing_while_permissions_are_frozen() -> None:
-    mind, answers, names = _mind("ours", 0)
+    mind = taught_mind(_setup(0, []))
     mind.switches = Switches(inference=False, prediction=False, frozen_perms=True)
-    assert mind.permit_all("trash", [(names[0], 1.0)]) is None
+    name = mind.objects[0].name
+    assert mind.permit_all("trash", [(name, 1.0)]) is None
     assert not mind.perms["trash"] and mind.rules["trash"] == ()
     assert mind.permit_all("trash", []) is None
