@@ -611,11 +611,11 @@ class Mind:
         """
         if self.switches.frozen_perms or not given:
             return None
+        rows = [self.obj(obj) for obj, _ in given]  # every object known before anything is stored
         kept = self._keep_posteriors(action)
         once = self.settings.learn.learner == "ours"
         out: Outcome | None = None
-        for obj, value in given:
-            i = self.obj(obj)
+        for i, (_, value) in zip(rows, given, strict=True):
             name = self.objects[i].name
             self.perms[action].pop(name, None)
             self._seq += 1

@@ -52,3 +52,10 @@ def test_permit_all_stores_and_learns_nothing_while_permissions_are_frozen() -> 
     assert mind.permit_all("trash", [(name, 1.0)]) is None
     assert not mind.perms["trash"] and mind.rules["trash"] == ()
     assert mind.permit_all("trash", []) is None
+
+
+def test_permit_all_with_an_unknown_object_stores_nothing() -> None:
+    mind = taught_mind(_setup(0, []))
+    with pytest.raises(KeyError, match="nothing"):
+        mind.permit_all("trash", [(mind.objects[0].name, 1.0), ("nothing", 0.0)])
+    assert not mind.perms["trash"]
