@@ -5,7 +5,7 @@
 Runs Table 1 (6 conditions plus the allow-everything baseline), Table 2 (3 conditions) and Table 3
 (collectAll and trashAll), each with ``--trials`` trials per condition, on the paper's blocks world
 (seed 0), and prints wall and summed trial (CPU) seconds with the headline figures.
-Targets on a 2-core machine with --jobs 2: Table 1 under 10 s, Table 3 (both tasks) under 30 s.
+Targets on a 2-core machine with --jobs 2: Table 1 under 5 s, Table 3 (both tasks) under 30 s.
 The figures depend on how busy the machine is: run it on an idle one.
 """
 
