@@ -8,10 +8,11 @@ import copy
 import numpy as np
 import pytest
 
-from ownctl.app.settings import ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER
+from ownctl.app.settings import ASK_AHEAD, ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.asking import (
     DEFAULT_MIN_GAIN,
+    TASK_AHEAD,
     TASK_KINDS,
     TASK_READ,
     TASK_TEMPER,
@@ -46,10 +47,14 @@ def test_kinds_are_parsed_and_checked() -> None:
 
 
 def test_the_store_settings_default_to_the_task_askers_policy() -> None:
-    assert (ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ) == (DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER,
-                                                                TASK_READ)
-    assert Policy() == Policy(ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, read=ASK_READ)
-    assert QuestionAsker(STEPS).read == TASK_READ
+    assert (ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ, ASK_AHEAD) == (
+        DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER, TASK_READ, TASK_AHEAD)
+    assert Policy() == Policy(ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, read=ASK_READ, ahead=ASK_AHEAD)
+    assert QuestionAsker(STEPS).read == TASK_READ and QuestionAsker(STEPS).ahead == TASK_AHEAD
+    with pytest.raises(BadValue, match="look-ahead"):
+        QuestionAsker(STEPS, ahead=-1)
+    with pytest.raises(BadValue, match="look-ahead"):
+        Policy(ahead=-2)
 
 
 @pytest.mark.slow
