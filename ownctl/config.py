@@ -22,7 +22,7 @@ ASK_MIN_GAIN = 0.05
 ASK_KINDS = ("act", "may", "whose")
 ASK_TEMPER = 0.5
 ASK_READ = True
-ASK_AHEAD = 0
+ASK_AHEAD = 3
 
 
 @dataclass(frozen=True)
