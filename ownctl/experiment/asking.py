@@ -6,7 +6,8 @@ Three strategies choose what to ask before the robot acts on an object (docs/ask
   (:func:`ownctl.mind.ask.best_questions`) for the objects the task will still attempt, asked
   when its gain is at least ``min_gain``; with ``taught``, a permission question (``may``,
   ``act``) is valued on the decisions up to its object, since the instructor teaches each
-  object's permissions when it is attempted;
+  object's permissions when it is attempted; with ``ahead`` (by default), its best questions
+  are valued again looking ahead to the permissions the object being decided gets next;
 - ``entropy``: "whose is OBJ?" for the object still to attempt whose ownership is most uncertain
   (largest sum over agents of the binary entropy of the posterior; ties: task order), as ActOwL's
   information-gain choice does;
@@ -129,7 +130,8 @@ class QuestionAsker:
 
     ``taught``: value a permission question on the decisions up to its object, as the task's
     instructor teaches every attempted object's permissions (docs/asking.md, section 4; off by
-    default). ``answers``
+    default); ``ahead``: how many of the best questions are valued again looking ahead to the
+    permissions the object being decided gets next (implies ``taught``; 0: none). ``answers``
     answers them (and the answer is taught); None only lists them (each still counts
     against the budget, so ``budget`` questions are listed).
     """
@@ -228,8 +230,9 @@ class Unit:
 class Policy:
     """How ``ours`` asks in the experiment: the least gain worth a question, the kinds it may
     ask, the power of the rule-set posteriors it values them on, whether it values permission
-    questions on the decisions up to their object (``taught``) and whether the truth reads
-    ownership as the learner does (``read``; docs/asking.md, section 4)."""
+    questions on the decisions up to their object (``taught``), whether the truth reads
+    ownership as the learner does (``read``) and how many of its best questions it values again
+    with the look-ahead (``ahead``; docs/asking.md, section 4)."""
 
     min_gain: float = DEFAULT_MIN_GAIN
     kinds: tuple[str, ...] = TASK_KINDS
