@@ -45,7 +45,6 @@ MAX_OWNER_AGENTS = 4  # owner sets of at most this many uncertain agents are enu
 SURE = 0.01  # an agent with posterior within SURE of 0 or 1 is taken as known in owner sets
 MIN_ANSWER = 1e-4  # answers less probable than this are dropped (the rest renormalised)
 MIN_OUTCOME = 0.01  # permissions about to be taught less probable than this are not looked ahead on
-AHEAD = 3  # questions re-valued with the look-ahead: this many best myopic ones (docs/asking.md, section 4)
 EXACT = 1.0  # the temper of the stated model's own posterior (docs/asking.md, section 2)
 
 
@@ -597,21 +596,14 @@ def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str
 
 def _ranked(mind: Mind, steps: Sequence[str], objs: Sequence[int | str], names: Sequence[str],
             pool: Sequence[Question], taught: bool, temper: float, read: bool, ahead: bool) -> list[Scored]:
-    """Every question of ``pool`` scored (see :func:`best_questions`), best first."""
-    if not taught:
-        if ahead:
-            before = mistakes_ahead(mind, steps, objs, temper, read)
-        else:
-            reading = task_reading(mind, steps) if read else IDENTITY
-            before = expected_mistakes(mind, steps, objs, temper, reading).total
-        scored = [value_of_information(mind, q, steps, objs, before, temper, read, ahead) for q in pool]
-    else:  # the value now over each horizon once: questions sharing a horizon share it
-        now: dict[int, float] = {}
-        scored = []
-        for q in pool:
-            cut = objs[: horizon(q, names)]
-            scored.append(value_of_information(mind, q, steps, cut, now.get(len(cut)), temper, read, ahead))
-            now[len(cut)] = scored[-1].before
+    """Every question of ``pool`` scored (see :func:`best_questions`), best first; the value now is
+    computed once per horizon (with ``taught``, questions sharing one share it)."""
+    now: dict[int, float] = {}
+    scored = []
+    for q in pool:
+        cut = list(objs[: horizon(q, names)] if taught else objs)
+        scored.append(value_of_information(mind, q, steps, cut, now.get(len(cut)), temper, read, ahead))
+        now[len(cut)] = scored[-1].before
     scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key(names)))
     return scored
 
@@ -624,7 +616,7 @@ def check_ahead(ahead: int) -> int:
     return ahead
 
 
-__all__ = ["AHEAD", "ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "OTHER", "Answer", "Expectation", "Question",
+__all__ = ["ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "OTHER", "Answer", "Expectation", "Question",
            "Scored", "action_answer_probabilities", "answers", "apply_answer", "best_questions", "candidates",
            "check_ahead", "check_temper", "decisions", "expected_mistakes", "horizon", "mistakes_ahead",
            "MIN_OUTCOME", "outcomes", "owner_sets", "p_permission",
