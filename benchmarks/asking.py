@@ -1,14 +1,17 @@
 """Benchmark: where the task experiment's mistakes come from, and what questions could save at best.
 
     python benchmarks/asking.py [--trials 8] [--seed 0] [--budget 4] [--kinds act,may,whose]
-        [--temper 0.5] [--min-gain 0.05] [--taught] [--as-given] [--hindsight] [--predictions] [--json]
+        [--temper 0.5] [--min-gain 0.05] [--taught] [--ahead K] [--as-given] [--hindsight] [--predictions]
+        [--json]
 
 On the asking experiment's worlds (``ownctl experiment task --ask``: trial ``t`` of task ``c`` is
 the paper's blocks world drawn with ``[seed, c, t]``), for collectAll and trashAll:
 
 - **classes of mistakes**, with no question and with ``--budget`` questions of our strategy
   (``--kinds``: the kinds it may ask, ``--temper``: the power of the rule-set posteriors it values
-  them on, ``--min-gain``, ``--taught``, ``--as-given``: ownership not read through the learner's
+  them on, ``--min-gain``, ``--taught``, ``--ahead``: how many of the best questions are valued
+  again looking ahead to the permissions the object being decided is given next (0: none),
+  ``--as-given``: ownership not read through the learner's
   claim calibration; the task asker's defaults otherwise; the strategy before them is ``--kinds
   act,may,whose,rule --temper 1 --as-given``): each mistake is taken just before the robot
   acts, with the beliefs it decides on. ``first``: no permission yet (no question may be asked
@@ -50,7 +53,13 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 from ownctl.config import LearnConfig, Settings  # noqa: E402
-from ownctl.experiment.asking import TASK_KINDS, TASK_TEMPER, OracleAnswers, QuestionAsker  # noqa: E402
+from ownctl.experiment.asking import (  # noqa: E402
+    TASK_AHEAD,
+    TASK_KINDS,
+    TASK_TEMPER,
+    OracleAnswers,
+    QuestionAsker,
+)
 from ownctl.experiment.kinematic import KinematicExecutor  # noqa: E402
 from ownctl.experiment.online import TASK_CONDITIONS  # noqa: E402
 from ownctl.experiment.oracle import OracleInstructor  # noqa: E402
@@ -184,7 +193,8 @@ def prediction_summary(rows: Sequence[tuple[int, float, float, float]], temper: 
 
 
 def run(c: int, t: int, seed: int, mode: str, budget: int, kinds: Sequence[str], min_gain: float,
-        temper: float = TASK_TEMPER, taught: bool = False, read: bool = True) -> tuple[int, list[str]]:
+        temper: float = TASK_TEMPER, taught: bool = False, read: bool = True,
+        ahead: int = TASK_AHEAD) -> tuple[int, list[str]]:
     """(mistakes, their classes) of one trial: ``mode`` ours, own (owners known), rules (norms
     known), both, or hindsight."""
     task, world, mind = setup(c, t, seed)
@@ -200,7 +210,7 @@ def run(c: int, t: int, seed: int, mode: str, budget: int, kinds: Sequence[str],
     if mode == "ours" and budget:
         inner = QuestionAsker(steps, "ours", budget, min_gain, OracleAnswers(world),
                               np.random.default_rng([seed, c, t, 1]), kinds=tuple(kinds), taught=taught,
-                              temper=temper, read=read)
+                              temper=temper, read=read, ahead=ahead)
     elif mode == "hindsight":
         inner = Hindsight(world, task, executor, budget, kinds)
     probe = Classifier(inner, world, steps)
@@ -237,6 +247,7 @@ def main() -> None:
     parser.add_argument("--temper", type=float, default=TASK_TEMPER)
     parser.add_argument("--min-gain", type=float, default=0.05)
     parser.add_argument("--taught", action="store_true")
+    parser.add_argument("--ahead", type=int, default=TASK_AHEAD)
     parser.add_argument("--as-given", action="store_true")
     parser.add_argument("--hindsight", action="store_true")
     parser.add_argument("--predictions", action="store_true")
@@ -258,12 +269,14 @@ def main() -> None:
         parser.error(f"--temper must be in (0, 1], got {args.temper}")
     doc: dict[str, Any] = {"trials": args.trials, "seed": args.seed, "budget": args.budget,
                            "kinds": kinds, "temper": args.temper, "min_gain": args.min_gain,
-                           "taught": args.taught, "read": not args.as_given, "tasks": {}}
+                           "taught": args.taught, "read": not args.as_given, "ahead": args.ahead,
+                           "tasks": {}}
     for c, cond in enumerate(TASK_CONDITIONS):
         rows = {}
         for label, mode, budget in modes:
             rows[label] = summary([run(c, t, args.seed, mode, budget, kinds, args.min_gain, args.temper,
-                                       args.taught, not args.as_given) for t in range(args.trials)])
+                                       args.taught, not args.as_given, args.ahead)
+                                   for t in range(args.trials)])
             if not args.json:
                 row = rows[label]
                 parts = ", ".join(f"{k} {v:.2f}" for k, v in row["classes"].items() if v)

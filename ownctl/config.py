@@ -14,12 +14,15 @@ DECIDE_RULES = ("map", "posterior")
 #: How the robot asks during a task, by default (docs/asking.md, section 4): the expected mistakes
 #: a question must save before it is put (setting ``ask.min_gain``); the kinds of question asked
 #: (``ask.kinds``: no rule questions, whose usual answer during a task, "partly", teaches nothing);
-#: the power of the rule-set posteriors questions are valued on (``ask.temper``); and whether
-#: ownership is read as the learner reads it (``ask.read``).
+#: the power of the rule-set posteriors questions are valued on (``ask.temper``); whether
+#: ownership is read as the learner reads it (``ask.read``); and how many of the best questions
+#: are valued again looking ahead to the permissions the object being decided is given next
+#: (``ask.ahead``, 0: none).
 ASK_MIN_GAIN = 0.05
 ASK_KINDS = ("act", "may", "whose")
 ASK_TEMPER = 0.5
 ASK_READ = True
+ASK_AHEAD = 3
 
 
 @dataclass(frozen=True)

@@ -49,13 +49,13 @@ def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: i
 
     if top < 1:
         raise BadValue(f"--top must be at least 1, got {top}")
-    _, _, temper, read = asking(tx.meta.settings())
+    _, _, temper, read, ahead = asking(tx.meta.settings())
     mind = load(tx, now).mind
     steps, idx = task_scope(mind, task, objects)
     before = expected_mistakes(mind, steps, idx, temper, task_reading(mind, steps) if read else IDENTITY)
-    ranked = best_questions(mind, steps, idx, top=top, temper=temper, read=read) if idx else []
+    ranked = best_questions(mind, steps, idx, top=top, temper=temper, read=read, ahead=ahead) if idx else []
     return {"task": task, "steps": list(steps), "objects": list(before.objects),
-            "expected_mistakes": before.total, "temper": temper, "read": read,
+            "expected_mistakes": before.total, "temper": temper, "read": read, "ahead": ahead,
             "per_object": [{"object": n, "decision": "forbidden" if d else "permitted",
                             "p_forbidden": float(p), "p_wrong": float(w)}
                            for n, d, p, w in zip(before.objects, before.decisions, before.p_forbidden,

@@ -309,10 +309,10 @@ def run(
         from ownctl.logic.vocab import object_steps
 
         with ctx.read() as tx:
-            min_gain, kinds, temper, read = asking(tx.meta.settings())
+            min_gain, kinds, temper, read, ahead = asking(tx.meta.settings())
         answers = OracleAnswers(world) if instructor == "oracle" else None
         asker = QuestionAsker(object_steps(chosen.action), "ours", ask, min_gain, answers, kinds=kinds,
-                              temper=temper, read=read)
+                              temper=temper, read=read, ahead=ahead)
     try:
         report = run_task(mind, world, chosen, executor, teacher, on_step=saved, asker=asker)
     except OwnctlError as exc:

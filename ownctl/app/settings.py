@@ -7,9 +7,11 @@ probable rule set, ``map``, or on P(forbidden) marginalised over the posterior o
 ``posterior``), ``ask.min_gain`` (the expected mistakes a question must save before the robot
 asks it during a run, a non-negative number), ``ask.kinds`` (the kinds of question the robot asks
 during ``run --ask``: some of act, may, whose, rule), ``ask.temper`` (the power of the rule-set
-posteriors questions are valued on, in (0, 1]) and ``ask.read`` (whether questions are valued with
-ownership read through the claim calibration the learner chose, a boolean), the last two for both
-``run --ask`` and ``ownctl ask`` (docs/asking.md, section 4).
+posteriors questions are valued on, in (0, 1]), ``ask.read`` (whether questions are valued with
+ownership read through the claim calibration the learner chose, a boolean) and ``ask.ahead`` (how
+many of the best questions are valued again looking ahead to the permissions the instructor gives
+the object being decided, a whole number, 0 for none), the last three for both ``run --ask`` and
+``ownctl ask`` (docs/asking.md, section 4).
 Stored values override the defaults of :class:`ownctl.config.Settings`.
 """
 
@@ -18,7 +20,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-from ownctl.config import ASK_KINDS as ASK_KINDS  # the ask.* defaults have one home, the config
+from ownctl.config import ASK_AHEAD as ASK_AHEAD  # the ask.* defaults have one home, the config
+from ownctl.config import ASK_KINDS as ASK_KINDS
 from ownctl.config import ASK_MIN_GAIN as ASK_MIN_GAIN
 from ownctl.config import ASK_READ as ASK_READ
 from ownctl.config import ASK_TEMPER as ASK_TEMPER
@@ -29,12 +32,12 @@ from ownctl.logic.vocab import ACTIONS
 FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.prediction")
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
 LEARNERS = ("ours", "paper")
-ASKING = ("ask.min_gain", "ask.kinds", "ask.temper", "ask.read")
+ASKING = ("ask.min_gain", "ask.kinds", "ask.temper", "ask.read", "ask.ahead")
 KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", *ASKING)
 DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,
                             "learner": Settings().learn.learner, "decide.rules": Settings().decide_rules,
                             "ask.min_gain": ASK_MIN_GAIN, "ask.kinds": list(ASK_KINDS),
-                            "ask.temper": ASK_TEMPER, "ask.read": ASK_READ}
+                            "ask.temper": ASK_TEMPER, "ask.read": ASK_READ, "ask.ahead": ASK_AHEAD}
 TRUE = ("true", "yes", "on", "1")
 FALSE = ("false", "no", "off", "0")
 
@@ -82,10 +85,21 @@ def temper(value: float | str) -> float:
     return check_temper(number)
 
 
-def asking(stored: dict[str, Any]) -> tuple[float, tuple[str, ...], float, bool]:
-    """(ask.min_gain, ask.kinds, ask.temper, ask.read): the stored values, else the defaults."""
+def ahead(value: int | str) -> int:
+    """``value`` as the number of questions valued with the look-ahead, a whole number of at least 0;
+    BadValue naming ask.ahead otherwise."""
+    text = str(value).strip()
+    if not text.isdigit():
+        raise BadValue(f"ask.ahead must be a whole number of at least 0 (0: no look-ahead), got {value!r}")
+    return int(text)
+
+
+def asking(stored: dict[str, Any]) -> tuple[float, tuple[str, ...], float, bool, int]:
+    """(ask.min_gain, ask.kinds, ask.temper, ask.read, ask.ahead): the stored values, else the
+    defaults."""
     return (float(stored.get("ask.min_gain", ASK_MIN_GAIN)), tuple(stored.get("ask.kinds", ASK_KINDS)),
-            float(stored.get("ask.temper", ASK_TEMPER)), bool(stored.get("ask.read", ASK_READ)))
+            float(stored.get("ask.temper", ASK_TEMPER)), bool(stored.get("ask.read", ASK_READ)),
+            int(stored.get("ask.ahead", ASK_AHEAD)))
 
 
 def parse_value(key: str, text: str) -> Any:
@@ -105,6 +119,8 @@ def parse_value(key: str, text: str) -> Any:
         return list(parse_kinds(text))
     if key == "ask.temper":
         return temper(text)
+    if key == "ask.ahead":
+        return ahead(text)
     if key == "learner":
         if text not in LEARNERS:
             raise BadValue(f"unknown learner {text!r}; valid learners: {', '.join(LEARNERS)}", LEARNERS)

@@ -14,7 +14,7 @@ from ownctl.errors import BadValue
 
 def run_ask(budgets: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
             json_out: bool, csv: str | None, plot: str | None, quiet: bool, kinds: str | None = None,
-            temper: float | None = None, read: bool | None = None) -> None:
+            temper: float | None = None, read: bool | None = None, ahead: int | None = None) -> None:
     """Run the asking experiment and print its tables or one JSON document."""
     from ownctl.app import experiment_ask
 
@@ -24,7 +24,7 @@ def run_ask(budgets: str, trials: int, seed: int, jobs: int, world: str | None, 
     if learner != "ours":
         raise BadValue(f"--ask runs the default learner only, got --learner {learner!r}", ("ours",))
     result = experiment_ask.run(budgets, trials, seed, jobs, task, plot, kinds=kinds, temper=temper,
-                                read=read)
+                                read=read, ahead=ahead)
     if json_out:
         typer.echo(json.dumps(result, ensure_ascii=False))
     elif not quiet:
@@ -59,4 +59,5 @@ def render(result: dict[str, Any]) -> None:
                   f"min gain {result['min_gain']}, ours asks {','.join(result['kinds'])} on the rule-set "
                   f"posterior to the power {result['temper']}, ownership "
                   f"{'as the learner reads it' if result['read'] else 'as given'}, "
+                  f"{result['ahead']} best valued again with the look-ahead, "
                   f"in {result['seconds']:.1f} s")

@@ -167,6 +167,11 @@ def task(
         "--ask-read/--ask-as-given", help="With --ask: value ours' questions with ownership read "
         "through the claim calibration the learner chose (default), or as it is given."
     )] = None,
+    ask_ahead: Annotated[int | None, typer.Option(
+        "--ask-ahead", metavar="K", help="With --ask: value ours' K best questions (and those about the "
+        "object being decided) again, counting what the robot learns from the permissions the "
+        "instructor gives that object next (0: none; default: ask.ahead's default)."
+    )] = None,
 ) -> None:
     """Table 3: collectAll and trashAll with a correcting instructor.
 
@@ -176,10 +181,10 @@ def task(
         from ownctl.cli.experiment_ask_cmd import run_ask
 
         run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, ask_kinds,
-                ask_temper, ask_read)
+                ask_temper, ask_read, ask_ahead)
         return
     for flag, value in (("--ask-kinds", ask_kinds), ("--ask-temper", ask_temper),
-                        ("--ask-read/--ask-as-given", ask_read)):
+                        ("--ask-read/--ask-as-given", ask_read), ("--ask-ahead", ask_ahead)):
         if value is not None:
             from ownctl.errors import BadValue
 

@@ -6,7 +6,8 @@ Three strategies choose what to ask before the robot acts on an object (docs/ask
   (:func:`ownctl.mind.ask.best_questions`) for the objects the task will still attempt, asked
   when its gain is at least ``min_gain``; with ``taught``, a permission question (``may``,
   ``act``) is valued on the decisions up to its object, since the instructor teaches each
-  object's permissions when it is attempted;
+  object's permissions when it is attempted; with ``ahead`` (by default), its best questions
+  are valued again looking ahead to the permissions the object being decided gets next;
 - ``entropy``: "whose is OBJ?" for the object still to attempt whose ownership is most uncertain
   (largest sum over agents of the binary entropy of the posterior; ties: task order), as ActOwL's
   information-gain choice does;
@@ -33,7 +34,7 @@ from typing import Any
 
 import numpy as np
 
-from ownctl.config import ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER, LearnConfig, Settings
+from ownctl.config import ASK_AHEAD, ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER, LearnConfig, Settings
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.kinematic import KinematicExecutor
 from ownctl.experiment.online import TASK_CONDITIONS
@@ -52,6 +53,7 @@ from ownctl.mind.ask import (
     apply_answer,
     best_questions,
     candidates,
+    check_ahead,
     check_temper,
 )
 from ownctl.world.generator import paper_blocks_world
@@ -60,6 +62,7 @@ from ownctl.world.model import World
 STRATEGIES = ("ours", "entropy", "random")
 #: how ``ours`` asks during a task by default: the defaults of the ask.* settings
 DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER, TASK_READ = ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ
+TASK_AHEAD = ASK_AHEAD
 
 
 class OracleAnswers:
@@ -127,7 +130,8 @@ class QuestionAsker:
 
     ``taught``: value a permission question on the decisions up to its object, as the task's
     instructor teaches every attempted object's permissions (docs/asking.md, section 4; off by
-    default). ``answers``
+    default); ``ahead``: how many of the best questions are valued again looking ahead to the
+    permissions the object being decided gets next (implies ``taught``; 0: none). ``answers``
     answers them (and the answer is taught); None only lists them (each still counts
     against the budget, so ``budget`` questions are listed).
     """
@@ -142,12 +146,14 @@ class QuestionAsker:
     taught: bool = False
     temper: float = TASK_TEMPER
     read: bool = TASK_READ
+    ahead: int = TASK_AHEAD
     asked: list[Asked] = field(default_factory=list)
 
     def __post_init__(self) -> None:
         check_strategy(self.strategy)
         check_kinds(self.kinds)
         check_temper(self.temper)
+        check_ahead(self.ahead)
         if self.budget < 0:
             raise BadValue(f"the question budget must be at least 0, got {self.budget}")
 
@@ -160,7 +166,8 @@ class QuestionAsker:
             pool = [q for q in candidates(mind, self.steps, remaining, self.kinds, temper=self.temper,
                                           read=self.read) if q not in seen]
             best = best_questions(mind, self.steps, remaining, top=1, questions=pool,
-                                  taught=self.taught, temper=self.temper, read=self.read)
+                                  taught=self.taught, temper=self.temper, read=self.read,
+                                  ahead=self.ahead)
             if not best or best[0].gain < self.min_gain:
                 return None
             return best[0].question, best[0].gain
@@ -223,18 +230,21 @@ class Unit:
 class Policy:
     """How ``ours`` asks in the experiment: the least gain worth a question, the kinds it may
     ask, the power of the rule-set posteriors it values them on, whether it values permission
-    questions on the decisions up to their object (``taught``) and whether the truth reads
-    ownership as the learner does (``read``; docs/asking.md, section 4)."""
+    questions on the decisions up to their object (``taught``), whether the truth reads
+    ownership as the learner does (``read``) and how many of its best questions it values again
+    with the look-ahead (``ahead``; docs/asking.md, section 4)."""
 
     min_gain: float = DEFAULT_MIN_GAIN
     kinds: tuple[str, ...] = TASK_KINDS
     temper: float = TASK_TEMPER
     taught: bool = False
     read: bool = TASK_READ
+    ahead: int = TASK_AHEAD
 
     def __post_init__(self) -> None:
         check_kinds(self.kinds)
         check_temper(self.temper)
+        check_ahead(self.ahead)
 
 
 def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ours") -> tuple[int, int]:
@@ -246,7 +256,7 @@ def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ou
     asker = QuestionAsker(object_steps(get_task(cond.task).action), unit.strategy, unit.budget,
                           policy.min_gain, OracleAnswers(world),
                           np.random.default_rng([seed, unit.condition, unit.trial, 1]), policy.kinds,
-                          taught=policy.taught, temper=policy.temper, read=policy.read)
+                          taught=policy.taught, temper=policy.temper, read=policy.read, ahead=policy.ahead)
     report = run_task(mind, world, cond.task, KinematicExecutor(world), OracleInstructor(world), asker=asker)
     return report.mistakes, len(asker.asked)
 
@@ -278,7 +288,8 @@ def parse_budgets(text: str) -> tuple[int, ...]:
 def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int = 1,
                    tasks: Sequence[str] = ("collectAll", "trashAll"), min_gain: float = DEFAULT_MIN_GAIN,
                    progress: Callable[[int, int], None] | None = None, kinds: Sequence[str] = TASK_KINDS,
-                   temper: float = TASK_TEMPER, read: bool = TASK_READ) -> dict[str, Any]:
+                   temper: float = TASK_TEMPER, read: bool = TASK_READ, ahead: int = TASK_AHEAD
+                   ) -> dict[str, Any]:
     """Mistakes per task and questions asked for every strategy and budget, on the same seeds.
 
     Budget 0 is one run per trial shared by the strategies (Table 3 itself). Returns the JSON
@@ -286,7 +297,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     mean number of questions asked, and the paired difference ours - entropy per budget.
     """
     check_settings(trials, jobs, "ours")
-    policy = Policy(min_gain, tuple(kinds), temper, read=read)
+    policy = Policy(min_gain, tuple(kinds), temper, read=read, ahead=ahead)
     names = [c.name for c in TASK_CONDITIONS]
     conds = [names.index(t) for t in tasks]
     units = [Unit(c, t, s, b) for c in conds for t in range(trials) for b in budgets
@@ -332,6 +343,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
         results.append({"task": names[c], "runs": rows, "paired": paired})
     return {"experiment": "task-ask", "trials": trials, "seed": seed, "jobs": jobs,
             "budgets": list(budgets), "strategies": list(STRATEGIES), "min_gain": min_gain,
-            "kinds": list(policy.kinds), "temper": policy.temper, "read": policy.read, "tasks": results,
+            "kinds": list(policy.kinds), "temper": policy.temper, "read": policy.read,
+            "ahead": policy.ahead, "tasks": results,
             "world": "paper blocks world (Table 3's trials: budget 0 is Table 3)",
             "seconds": time.perf_counter() - start}

@@ -44,6 +44,7 @@ TOP_RULES = 2  # rules asked about per step: the most uncertain rules of its pos
 MAX_OWNER_AGENTS = 4  # owner sets of at most this many uncertain agents are enumerated
 SURE = 0.01  # an agent with posterior within SURE of 0 or 1 is taken as known in owner sets
 MIN_ANSWER = 1e-4  # answers less probable than this are dropped (the rest renormalised)
+MIN_OUTCOME = 0.01  # permissions about to be taught less probable than this are not looked ahead on
 EXACT = 1.0  # the temper of the stated model's own posterior (docs/asking.md, section 2)
 
 
@@ -449,21 +450,70 @@ def apply_answer(mind: Mind, answer: Answer, speaker: str | None = None) -> None
         mind.instruct(Norm("forbid" if answer.holds == "yes" else "allow", q.rule), speaker)
 
 
+def outcomes(mind: Mind, steps: Sequence[str], obj: int | str, temper: float = EXACT,
+             reading: Reading = IDENTITY) -> list[tuple[Answer, float]]:
+    """What the task's instructor is about to teach on ``obj``, the object being decided: the
+    permission of each of its ``steps`` without one, as an answer to "may I ACTION OBJ?" over those
+    steps with its predicted probability (:func:`action_answer_probabilities`); outcomes less
+    probable than MIN_OUTCOME are dropped and the rest renormalised (docs/asking.md, section 4).
+    Empty when every step has its permission already (nothing is left to teach)."""
+    open_steps = tuple(s for s in steps if mind.permission(s, obj) is None)
+    if not open_steps:
+        return []
+    name = mind.objects[mind.obj(obj)].name
+    question = Question("act", name, open_steps[-1], steps=open_steps)
+    probs = action_answer_probabilities(mind, open_steps, obj, temper, reading)
+    kept = [(Answer(question, forbids=b), p) for b, p in probs if p >= MIN_OUTCOME]
+    z = sum(p for _, p in kept)
+    return [(a, p / z) for a, p in kept]
+
+
+def mistakes_ahead(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], temper: float = EXACT,
+                   read: bool = False) -> float:
+    """The expected mistakes of a task whose instructor teaches the first object's permissions
+    right after its decision (docs/asking.md, section 4): P(wrong on ``objects[0]``) on current
+    beliefs, plus, over the permissions the instructor is about to give it (:func:`outcomes`),
+    the expected mistakes on the other objects once the Mind has learned from them (each on a
+    fork). ``read``: each state reads ownership through its own :func:`task_reading`."""
+    if not objects:
+        return 0.0
+    reading = task_reading(mind, steps) if read else IDENTITY
+    first, rest = objects[:1], list(objects[1:])
+    taught = outcomes(mind, steps, first[0], temper, reading) if rest else []
+    if not taught:
+        return expected_mistakes(mind, steps, objects, temper, reading).total
+    total = expected_mistakes(mind, steps, first, temper, reading).total
+    for answer, p in taught:
+        fork = mind.fork()
+        apply_answer(fork, answer)
+        then = task_reading(fork, steps) if read else IDENTITY
+        total += p * expected_mistakes(fork, steps, rest, temper, then).total
+    return total
+
+
 def value_of_information(mind: Mind, question: Question, steps: Sequence[str],
                          objects: Sequence[int | str], before: float | None = None,
-                         temper: float = EXACT, read: bool = False) -> Scored:
+                         temper: float = EXACT, read: bool = False, ahead: bool = False) -> Scored:
     """EM(now) - sum over answers of P(answer) EM(after teaching the answer to a fork of ``mind``),
     answers and mistakes on the rule-set posteriors raised to ``temper`` (1: the stated model's);
     ``read``: the truth reads ownership through :func:`task_reading` (now, and on each fork after
-    its answer), as the learner does; off, as it is given."""
+    its answer), as the learner does; off, as it is given. ``ahead``: EM is
+    :func:`mistakes_ahead`, which also counts what the Mind learns from the permissions the
+    instructor gives the first object right after its decision (docs/asking.md, section 4)."""
     reading = task_reading(mind, steps) if read else IDENTITY
-    now = expected_mistakes(mind, steps, objects, temper, reading).total if before is None else before
+
+    def measure(state: Mind, how: Reading) -> float:
+        if ahead:
+            return mistakes_ahead(state, steps, objects, temper, read)
+        return expected_mistakes(state, steps, objects, temper, how).total
+
+    now = measure(mind, reading) if before is None else before
     rows = []
     for answer, p in answers(mind, question, temper, reading):
         fork = mind.fork()
         apply_answer(fork, answer)
-        then = task_reading(fork, steps) if read else IDENTITY
-        rows.append((answer, p, expected_mistakes(fork, steps, objects, temper, then).total))
+        then = task_reading(fork, steps) if read and not ahead else IDENTITY
+        rows.append((answer, p, measure(fork, then)))
     after = sum(p * em for _, p, em in rows)
     return Scored(question, now - after, now, tuple(rows))
 
@@ -517,31 +567,58 @@ def horizon(question: Question, names: Sequence[str]) -> int:
 
 def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], top: int = 3,
                    kinds: Sequence[str] = KINDS, questions: Sequence[Question] | None = None,
-                   taught: bool = False, temper: float = EXACT, read: bool = False) -> list[Scored]:
+                   taught: bool = False, temper: float = EXACT, read: bool = False,
+                   ahead: int = 0) -> list[Scored]:
     """The ``top`` questions of largest value of information, best first; equal gains (to 1e-9) in
     :meth:`Question.sort_key` order over ``objects``' order. ``taught``: the objects' permissions
     will be taught as each is attempted, so a permission question's value counts only the
     decisions up to its object (:func:`horizon`). ``temper``: value on the rule-set posteriors
     raised to that power (:func:`tempered`; 1 is the stated model's posterior, exact). ``read``: the
-    truth reads ownership as the learner does (:func:`task_reading`)."""
+    truth reads ownership as the learner does (:func:`task_reading`). ``ahead``: value the
+    questions as the task's instructor teaches, which implies ``taught``: the ``ahead`` best of
+    them and every question about the first object (the one being decided) are valued again
+    with the look-ahead over the permissions the instructor gives that object next
+    (:func:`mistakes_ahead`), and ranked on it (docs/asking.md, section 4); 0: no look-ahead."""
     check_temper(temper)
+    taught = taught or check_ahead(ahead) > 0
     pool = (candidates(mind, steps, objects, kinds, temper=temper, read=read) if questions is None
             else list(questions))
     objs = list(objects)
     names = [mind.objects[mind.obj(o)].name for o in objs]
-    if not taught:
-        reading = task_reading(mind, steps) if read else IDENTITY
-        before = expected_mistakes(mind, steps, objs, temper, reading).total
-        scored = [value_of_information(mind, q, steps, objs, before, temper, read) for q in pool]
-    else:
-        scored = [value_of_information(mind, q, steps, objs[: horizon(q, names)], temper=temper, read=read)
-                  for q in pool]
-    scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key(names)))
+    scored = _ranked(mind, steps, objs, names, pool, taught, temper, read, ahead=False)
+    if ahead and scored:
+        first = names[0]
+        chosen = [s.question for s in scored[:ahead]]
+        chosen += [s.question for s in scored[ahead:] if s.question.object == first]
+        scored = _ranked(mind, steps, objs, names, chosen, taught, temper, read, ahead=True)
     return scored[:top]
 
 
-__all__ = ["ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "OTHER", "Answer", "Expectation", "Question", "Scored",
-           "action_answer_probabilities", "answers", "apply_answer", "best_questions", "candidates",
-           "check_temper", "decisions", "expected_mistakes", "horizon", "owner_sets", "p_permission",
+def _ranked(mind: Mind, steps: Sequence[str], objs: Sequence[int | str], names: Sequence[str],
+            pool: Sequence[Question], taught: bool, temper: float, read: bool, ahead: bool) -> list[Scored]:
+    """Every question of ``pool`` scored (see :func:`best_questions`), best first; the value now is
+    computed once per horizon (with ``taught``, questions sharing one share it)."""
+    now: dict[int, float] = {}
+    scored = []
+    for q in pool:
+        cut = list(objs[: horizon(q, names)] if taught else objs)
+        scored.append(value_of_information(mind, q, steps, cut, now.get(len(cut)), temper, read, ahead))
+        now[len(cut)] = scored[-1].before
+    scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key(names)))
+    return scored
+
+
+def check_ahead(ahead: int) -> int:
+    """``ahead`` if it is a whole number of questions, at least 0; BadValue naming it otherwise."""
+    if isinstance(ahead, bool) or not isinstance(ahead, int) or ahead < 0:
+        raise BadValue(f"the number of questions re-valued with the look-ahead must be a whole number "
+                       f"of at least 0 (0: none), got {ahead!r}")
+    return ahead
+
+
+__all__ = ["ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "OTHER", "Answer", "Expectation", "Question",
+           "Scored", "action_answer_probabilities", "answers", "apply_answer", "best_questions", "candidates",
+           "check_ahead", "check_temper", "decisions", "expected_mistakes", "horizon", "mistakes_ahead",
+           "MIN_OUTCOME", "outcomes", "owner_sets", "p_permission",
            "rule_answer_probabilities", "step_forbidden", "task_reading", "tempered", "worlds_for",
            "value_of_information"]

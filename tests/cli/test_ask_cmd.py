@@ -113,6 +113,19 @@ def test_ask_values_questions_at_the_configured_temper(world: Ownctl) -> None:
     assert world.json("ask", "--task", "trashAll", "--top", "3")["read"] is False
 
 
+def test_ask_looks_ahead_as_configured(world: Ownctl) -> None:
+    assert world.json("config", "get")["ask.ahead"] == world.json("ask", "--top", "1")["ahead"]
+    world("config", "set", "ask.ahead", "2")
+    assert world.json("config", "get")["ask.ahead"] == 2
+    ahead = world.json("ask", "--task", "trashAll", "--top", "3")
+    assert ahead["ahead"] == 2 and ahead["questions"]
+    world("config", "set", "ask.ahead", "0")
+    myopic = world.json("ask", "--task", "trashAll", "--top", "3")
+    assert myopic["ahead"] == 0
+    assert [(q["text"], round(q["gain"], 6)) for q in ahead["questions"]] != [
+        (q["text"], round(q["gain"], 6)) for q in myopic["questions"]]
+
+
 def test_run_asks_only_the_configured_kinds(ownctl: Ownctl, tmp_path: Path) -> None:
     loaded(ownctl, tmp_path)
     ownctl("config", "set", "ask.min_gain", "0")
@@ -131,6 +144,7 @@ def test_bad_inputs_are_one_line_and_write_nothing(world: Ownctl) -> None:
                  ("config", "set", "ask.kinds", "act,dance"), ("config", "set", "ask.kinds", ","),
                  ("config", "set", "ask.temper", "0"), ("config", "set", "ask.temper", "lots"),
                  ("config", "set", "ask.temper", "nan"), ("config", "set", "ask.read", "maybe"),
+                 ("config", "set", "ask.ahead", "few"), ("config", "set", "ask.ahead", "2.5"),
                  ("owners", "can", "--coverage", "1.5"), ("experiment", "task", "--ask", "1,x")):
         result = world(*args, code=1)
         assert len(result.stderr.strip().splitlines()) == 1, (args, result.stderr)

@@ -8,10 +8,11 @@ import copy
 import numpy as np
 import pytest
 
-from ownctl.app.settings import ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER
+from ownctl.app.settings import ASK_AHEAD, ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.asking import (
     DEFAULT_MIN_GAIN,
+    TASK_AHEAD,
     TASK_KINDS,
     TASK_READ,
     TASK_TEMPER,
@@ -46,10 +47,14 @@ def test_kinds_are_parsed_and_checked() -> None:
 
 
 def test_the_store_settings_default_to_the_task_askers_policy() -> None:
-    assert (ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ) == (DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER,
-                                                                TASK_READ)
-    assert Policy() == Policy(ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, read=ASK_READ)
-    assert QuestionAsker(STEPS).read == TASK_READ
+    assert (ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ, ASK_AHEAD) == (
+        DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER, TASK_READ, TASK_AHEAD)
+    assert Policy() == Policy(ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, read=ASK_READ, ahead=ASK_AHEAD)
+    assert QuestionAsker(STEPS).read == TASK_READ and QuestionAsker(STEPS).ahead == TASK_AHEAD
+    with pytest.raises(BadValue, match="look-ahead"):
+        QuestionAsker(STEPS, ahead=-1)
+    with pytest.raises(BadValue, match="look-ahead"):
+        Policy(ahead=-2)
 
 
 @pytest.mark.slow
@@ -75,7 +80,8 @@ def test_ours_asks_the_best_question_on_the_tempered_posterior() -> None:
     mind.permit("trash", 0, 0.0)
     mind.permit("pickUp", 0, 0.0)
     remaining = list(range(1, 5))
-    asker = QuestionAsker(STEPS, "ours", budget=1, min_gain=0.0, answers=OracleAnswers(world), temper=0.5)
+    asker = QuestionAsker(STEPS, "ours", budget=1, min_gain=0.0, answers=OracleAnswers(world), temper=0.5,
+                          ahead=0)
     pool = candidates(mind, STEPS, remaining, TASK_KINDS, temper=0.5)
     assert all(q.kind in TASK_KINDS for q in pool)
     want = best_questions(mind, STEPS, remaining, top=1, questions=pool, temper=0.5)[0]
@@ -85,3 +91,23 @@ def test_ours_asks_the_best_question_on_the_tempered_posterior() -> None:
     assert want.before != pytest.approx(exact.before)  # the tempered posterior expects other mistakes
     asker.before(mind, 1, remaining)
     assert [a.question for a in asker.asked] == [want.question]
+
+
+@pytest.mark.slow
+def test_ours_asks_the_best_question_looking_ahead() -> None:
+    world = paper_blocks_world(np.random.default_rng([0, 1, 3]))
+    mind = Mind(world.agents, list(world.objects), world.areas)
+    mind.permit("trash", 0, 1.0)
+    mind.permit("pickUp", 0, 0.0)
+    remaining = list(range(1, 6))
+    asker = QuestionAsker(STEPS, "ours", budget=1, min_gain=0.0, answers=OracleAnswers(world))
+    assert asker.ahead == TASK_AHEAD > 0  # the task asker looks ahead by default
+    pool = candidates(mind, STEPS, remaining, TASK_KINDS, temper=TASK_TEMPER, read=TASK_READ)
+    want = best_questions(mind, STEPS, remaining, top=1, questions=pool, temper=TASK_TEMPER, read=TASK_READ,
+                          ahead=TASK_AHEAD)[0]
+    myopic = best_questions(mind, STEPS, remaining, top=1, questions=pool, temper=TASK_TEMPER,
+                            read=TASK_READ)[0]
+    assert want.before != pytest.approx(myopic.before)  # the value counts the permissions taught next
+    asker.before(mind, 1, remaining)
+    assert [a.question for a in asker.asked] == [want.question]
+    assert asker.asked[0].gain == pytest.approx(want.gain, abs=1e-12)

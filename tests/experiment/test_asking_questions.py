@@ -48,7 +48,7 @@ def test_ours_asks_after_the_first_permission_the_best_taught_question() -> None
     w = world(1)
     mind = Mind(w.agents, list(w.objects), list(w.areas))
     asker = QuestionAsker(STEPS, "ours", budget=2, min_gain=0.0, answers=OracleAnswers(w), kinds=ALL_KINDS,
-                          taught=True, temper=1.0)
+                          taught=True, temper=1.0, ahead=0)
     remaining = list(range(len(w.objects)))
     asker.before(mind, 0, remaining)
     assert asker.asked == []  # no permission yet: the posterior is only its prior

@@ -72,6 +72,8 @@ def test_quiet_prints_nothing() -> None:
         (["task", "--ask-temper", "0.5"], "--ask-temper applies only with --ask"),
         (["task", "--ask-as-given"], "--ask-read/--ask-as-given applies only with --ask"),
         (["task", "--ask", "1", "--ask-temper", "0"], "must be in (0, 1]"),
+        (["task", "--ask-ahead", "2"], "--ask-ahead applies only with --ask"),
+        (["task", "--ask", "1", "--ask-ahead=-1"], "look-ahead must be a whole number"),
         (["task", "--ask", "1", "--ask-kinds", "act,why"],
          "unknown question kind 'why'; known question kinds: act, may, rule, whose"),
     ],
