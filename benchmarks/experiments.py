@@ -23,6 +23,7 @@ import os
 import platform
 import resource
 import time
+from typing import Any
 
 TARGETS = {"norms": 5.0, "task": 30.0}
 
@@ -33,36 +34,39 @@ def _cpu() -> float:
     return own.ru_utime + own.ru_stime + kids.ru_utime + kids.ru_stime
 
 
-def _online_trial(unit: tuple[int, int, str]) -> tuple[int, float, float]:
-    """Trial ``t`` of Table 1 condition ``c``, every permission taught on its own: (c, mean accuracy
-    over the actions, mean F1), drawn exactly as ``ownctl experiment norms`` draws it."""
-    import numpy as np
-
-    from ownctl.experiment.norms import NORM_CONDITIONS, norms_trial
+def _online_trial(unit: tuple[int, int, str]) -> tuple[int, Any]:
+    """Trial ``t`` of Table 1 condition ``c`` with every permission taught on its own, drawn as
+    ``ownctl experiment norms`` draws it: (c, its trial result)."""
+    from ownctl.experiment.norms import NORM_CONDITIONS, norms_result
+    from ownctl.experiment.runner import trial_rng
     from ownctl.world.generator import paper_blocks_world
 
     c, t, learner = unit
-    scores = norms_trial(paper_blocks_world, NORM_CONDITIONS[c], learner, np.random.default_rng([0, c, t]),
-                         together=False)
-    accuracy = float(np.mean([s.accuracy for s in scores.values()]))
-    return c, accuracy, float(np.mean([s.f1 for s in scores.values()]))
+    rng = trial_rng(0, c, t)
+    return c, norms_result(paper_blocks_world, NORM_CONDITIONS[c], learner, rng, together=False)
 
 
-def _norms_online(trials: int, jobs: int, learner: str) -> dict[str, dict[str, float]]:
-    """Table 1's headline figures with every permission taught on its own (see the module docstring)."""
+def _norms_online(trials: int, jobs: int, learner: str) -> list[Any]:
+    """Table 1's conditions summarised as the experiment summarises them, with every permission
+    taught on its own (see the module docstring)."""
     from concurrent.futures import ProcessPoolExecutor
 
-    from ownctl.experiment.norms import NORM_CONDITIONS
+    from ownctl.experiment.registry import get_experiment
+    from ownctl.experiment.summary import summarise
 
-    units = [(c, t, learner) for c in range(len(NORM_CONDITIONS)) for t in range(trials)]
+    exp = get_experiment("norms")
+    units = [(c, t, learner) for c in range(len(exp.conditions)) for t in range(trials)]
     with ProcessPoolExecutor(jobs) as pool:
         done = list(pool.map(_online_trial, units, chunksize=max(1, len(units) // (8 * jobs))))
-    out = {}
-    for c, cond in enumerate(NORM_CONDITIONS):
-        rows = [(a, f) for k, a, f in done if k == c]
-        out[cond.name] = {"accuracy": round(sum(a for a, _ in rows) / len(rows), 3),
-                          "f1": round(sum(f for _, f in rows) / len(rows), 3)}
-    return out
+    return [summarise(cond.name, c, [r for k, r in done if k == c], exp.headline, {}, {}, 0.0)
+            for c, cond in enumerate(exp.conditions)]
+
+
+def _headline(conditions: Any) -> dict[str, dict[str, float]]:
+    """Each condition's headline accuracy, F1 and (tasks) mistakes, rounded."""
+    return {c.name: {"accuracy": round(c.accuracy.mean, 3), "f1": round(c.f1.mean, 3),
+                     **{k: round(v.mean, 2) for k, v in c.counts.items() if k == "mistakes"}}
+            for c in conditions}
 
 
 def main() -> None:
@@ -82,12 +86,10 @@ def main() -> None:
     for name in args.only or ("norms", "ownership", "task"):
         t0, c0 = time.perf_counter(), _cpu()
         if name == "norms-online":
-            headline = _norms_online(args.trials, args.jobs, args.learner)
+            headline = _headline(_norms_online(args.trials, args.jobs, args.learner))
         else:
-            result = run(name, trials=args.trials, seed=0, jobs=args.jobs, learner=args.learner)
-            headline = {c.name: {"accuracy": round(c.accuracy.mean, 3), "f1": round(c.f1.mean, 3),
-                                 **{k: round(v.mean, 2) for k, v in c.counts.items() if k == "mistakes"}}
-                        for c in result.conditions}
+            headline = _headline(run(name, trials=args.trials, seed=0, jobs=args.jobs,
+                                     learner=args.learner).conditions)
         wall, cpu = time.perf_counter() - t0, _cpu() - c0
         rows.append({
             "experiment": name,

@@ -54,6 +54,7 @@ from ownctl.errors import OwnctlError  # noqa: E402
 from ownctl.experiment.cluster import executor  # noqa: E402
 from ownctl.experiment.metrics import ci95, rule_scores  # noqa: E402
 from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, norms_trial  # noqa: E402
+from ownctl.experiment.runner import trial_rng  # noqa: E402
 from ownctl.world.families import EVALUATION_SEEDS, norm_family  # noqa: E402
 from ownctl.world.generator import paper_blocks_world  # noqa: E402
 from ownctl.world.model import positions  # noqa: E402
@@ -69,7 +70,7 @@ PAPER = -1  # the "family seed" of the paper's own blocks world and norms (--pap
 def _rng(family: int, c: int, t: int) -> np.random.Generator:
     """Trial ``t`` of condition ``c``: as ``ownctl experiment norms --families`` draws it, or, for the
     paper's world, exactly as Table 1 (``ownctl experiment norms``, seed 0) does."""
-    return np.random.default_rng([SEED, c, t] if family == PAPER else [SEED, family, c, t])
+    return trial_rng(SEED, c, t, None if family == PAPER else family)
 
 
 def world_of(family: int) -> Any:

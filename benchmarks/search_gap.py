@@ -30,21 +30,21 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
+from ownctl.experiment.metrics import rule_scores  # noqa: E402
 from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, taught_mind  # noqa: E402
+from ownctl.experiment.runner import trial_rng  # noqa: E402
 from ownctl.learn import exact, induce  # noqa: E402
-from ownctl.logic.prob import p_forbidden  # noqa: E402
 from ownctl.world.families import norm_family  # noqa: E402
 
 
 def classify(family: int, c: int, t: int) -> list[tuple[str, float]]:
     """Per scored action of trial ``t`` of condition ``c`` on ``family``: ``right``, ``search`` or
     ``model``, and the objective of the learned rules minus that of the true norms."""
-    setup = norms_setup(norm_family(family), NORM_CONDITIONS[c], np.random.default_rng([0, family, c, t]))
+    setup = norms_setup(norm_family(family), NORM_CONDITIONS[c], trial_rng(0, c, t, family))
     mind = taught_mind(setup)
     out: list[tuple[str, float]] = []
     for action, true in setup.rules.items():
-        learned = p_forbidden(mind.rules[action], setup.true_frame) >= 0.5
-        if np.array_equal(learned, setup.answers[action] >= 0.5):
+        if rule_scores(setup.answers[action], mind.p_rules_on(action, setup.true_frame)).accuracy == 1.0:
             out.append(("right", 0.0))
             continue
         ev, _ = mind.evidence(action)

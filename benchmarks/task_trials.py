@@ -29,6 +29,8 @@ def _mistakes(unit: tuple[int, int, int]) -> tuple[str, float]:
     from ownctl.world.generator import paper_blocks_world
 
     seed, c, t = unit
+    # the generator ownctl.experiment.runner.trial_rng makes, spelled out: versions of ownctl older
+    # than that function are measured with this file too
     result = task_trial(paper_blocks_world, TASK_CONDITIONS[c], "ours", np.random.default_rng([seed, c, t]))
     return f"{seed}/{TASKS[c]}/{t}", float(result.counts["mistakes"])
 

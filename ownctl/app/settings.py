@@ -87,11 +87,15 @@ def temper(value: float | str) -> float:
 
 def ahead(value: int | str) -> int:
     """``value`` as the number of questions valued with the look-ahead, a whole number of at least 0;
-    BadValue naming ask.ahead otherwise."""
-    text = str(value).strip()
-    if not text.isdigit():
-        raise BadValue(f"ask.ahead must be a whole number of at least 0 (0: no look-ahead), got {value!r}")
-    return int(text)
+    BadValue naming ask.ahead otherwise (the range is :func:`ownctl.mind.ask.check_ahead`'s)."""
+    from ownctl.mind.ask import check_ahead
+
+    try:
+        number = int(str(value).strip())
+    except ValueError:
+        raise BadValue(f"ask.ahead must be a whole number of at least 0 (0: no look-ahead), "
+                       f"got {value!r}") from None
+    return check_ahead(number)
 
 
 def asking(stored: dict[str, Any]) -> tuple[float, tuple[str, ...], float, bool, int]:

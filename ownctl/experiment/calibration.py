@@ -17,6 +17,7 @@ import numpy as np
 
 from ownctl.experiment.norms import WorldFactory
 from ownctl.experiment.ownership import OWNERSHIP_CONDITIONS, protocol
+from ownctl.experiment.runner import trial_rng
 from ownctl.mind.conformal import NOT, OWNS, label_set, loo_scores, threshold
 
 BINS = 10
@@ -51,7 +52,7 @@ def calibration(make_world: WorldFactory, trials: int, seed: int, learner: str,
         cond = OWNERSHIP_CONDITIONS[c]
         ps, ys, hits, sizes = [], [], [], []
         for t in range(trials):
-            mind, world, test = protocol(make_world, cond, learner, np.random.default_rng([seed, c, t]))
+            mind, world, test = protocol(make_world, cond, learner, trial_rng(seed, c, t))
             truth = world.true_ownership() >= 0.5
             post = mind.posterior()
             for j, agent in enumerate(world.agents):

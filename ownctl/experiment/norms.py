@@ -127,6 +127,6 @@ def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
 
 
 def norms_result(make_world: WorldFactory, cond: NormCondition, learner: str,
-                 rng: np.random.Generator, decide: str = "map") -> TrialResult:
+                 rng: np.random.Generator, decide: str = "map", together: bool = True) -> TrialResult:
     """:func:`norms_trial` as a trial result: group ``rules``, one row per action with a true norm."""
-    return TrialResult({"rules": norms_trial(make_world, cond, learner, rng, decide)})
+    return TrialResult({"rules": norms_trial(make_world, cond, learner, rng, decide, together)})

@@ -102,12 +102,17 @@ def select_conditions(exp: Experiment, names: Sequence[str] | None) -> list[int]
     return out
 
 
+def trial_rng(seed: int, c: int, t: int, family: int | None = None) -> np.random.Generator:
+    """The random generator of trial ``t`` of condition ``c`` (of norm family ``family``, if given):
+    the one place a trial's generator is made, for the experiments and for the benchmarks that run
+    other learners or versions on the very same trials."""
+    return np.random.default_rng([seed, c, t] if family is None else [seed, family, c, t])
+
+
 def run_trial(exp: Experiment, world_factory: WorldFactory, learner: str, seed: int, c: int,
               t: int, family: int | None = None, decide: str = "map") -> TrialResult:
-    """Trial ``t`` of condition ``c`` (of norm family ``family``, if given): the one place a trial's
-    random generator is made."""
-    rng = np.random.default_rng([seed, c, t] if family is None else [seed, family, c, t])
-    return exp.trial(world_factory, exp.conditions[c], learner, rng, decide)
+    """Trial ``t`` of condition ``c`` (of norm family ``family``, if given), on :func:`trial_rng`."""
+    return exp.trial(world_factory, exp.conditions[c], learner, trial_rng(seed, c, t, family), decide)
 
 
 Unit = tuple[int, int, int]  # (world factory index, condition index, trial)

@@ -469,15 +469,17 @@ def outcomes(mind: Mind, steps: Sequence[str], obj: int | str, temper: float = E
 
 
 def mistakes_ahead(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], temper: float = EXACT,
-                   read: bool = False) -> float:
+                   read: bool = False, reading: Reading | None = None) -> float:
     """The expected mistakes of a task whose instructor teaches the first object's permissions
     right after its decision (docs/asking.md, section 4): P(wrong on ``objects[0]``) on current
     beliefs, plus, over the permissions the instructor is about to give it (:func:`outcomes`),
     the expected mistakes on the other objects once the Mind has learned from them (each on a
-    fork). ``read``: each state reads ownership through its own :func:`task_reading`."""
+    fork). ``read``: each state reads ownership through its own :func:`task_reading`; ``reading``:
+    ``mind``'s, when the caller has it already."""
     if not objects:
         return 0.0
-    reading = task_reading(mind, steps) if read else IDENTITY
+    if reading is None:
+        reading = task_reading(mind, steps) if read else IDENTITY
     first, rest = objects[:1], list(objects[1:])
     taught = outcomes(mind, steps, first[0], temper, reading) if rest else []
     if not taught:
@@ -504,7 +506,7 @@ def value_of_information(mind: Mind, question: Question, steps: Sequence[str],
 
     def measure(state: Mind, how: Reading) -> float:
         if ahead:
-            return mistakes_ahead(state, steps, objects, temper, read)
+            return mistakes_ahead(state, steps, objects, temper, read, how)
         return expected_mistakes(state, steps, objects, temper, how).total
 
     now = measure(mind, reading) if before is None else before
@@ -512,7 +514,7 @@ def value_of_information(mind: Mind, question: Question, steps: Sequence[str],
     for answer, p in answers(mind, question, temper, reading):
         fork = mind.fork()
         apply_answer(fork, answer)
-        then = task_reading(fork, steps) if read and not ahead else IDENTITY
+        then = task_reading(fork, steps) if read else IDENTITY
         rows.append((answer, p, measure(fork, then)))
     after = sum(p * em for _, p, em in rows)
     return Scored(question, now - after, now, tuple(rows))

@@ -29,6 +29,7 @@ from ownctl.logic.vocab import object_steps
 from ownctl.mind import Mind
 from ownctl.mind.ask import best_questions, candidates, value_of_information
 from ownctl.world.generator import paper_blocks_world
+from ownctl.world.model import World
 
 STEPS = object_steps("trash")
 
@@ -73,12 +74,19 @@ def test_the_task_loop_resumes_from_any_object_as_if_never_stopped() -> None:
     assert ahead == tail
 
 
+def _first_taught(seed: int, trash: float) -> tuple[World, Mind]:
+    """A paper world of ``seed`` whose Mind was taught its first object's permissions (``trash``
+    forbidden or not, ``pickUp`` allowed), as the task asker sees it before the second object."""
+    world = paper_blocks_world(np.random.default_rng(seed))
+    mind = Mind(world.agents, list(world.objects), world.areas)
+    mind.permit("trash", 0, trash)
+    mind.permit("pickUp", 0, 0.0)
+    return world, mind
+
+
 @pytest.mark.slow
 def test_ours_asks_the_best_question_on_the_tempered_posterior() -> None:
-    world = paper_blocks_world(np.random.default_rng([0, 1, 2]))
-    mind = Mind(world.agents, list(world.objects), world.areas)
-    mind.permit("trash", 0, 0.0)
-    mind.permit("pickUp", 0, 0.0)
+    world, mind = _first_taught([0, 1, 2], 0.0)
     remaining = list(range(1, 5))
     asker = QuestionAsker(STEPS, "ours", budget=1, min_gain=0.0, answers=OracleAnswers(world), temper=0.5,
                           ahead=0)
@@ -95,10 +103,7 @@ def test_ours_asks_the_best_question_on_the_tempered_posterior() -> None:
 
 @pytest.mark.slow
 def test_ours_asks_the_best_question_looking_ahead() -> None:
-    world = paper_blocks_world(np.random.default_rng([0, 1, 3]))
-    mind = Mind(world.agents, list(world.objects), world.areas)
-    mind.permit("trash", 0, 1.0)
-    mind.permit("pickUp", 0, 0.0)
+    world, mind = _first_taught([0, 1, 3], 1.0)
     remaining = list(range(1, 6))
     asker = QuestionAsker(STEPS, "ours", budget=1, min_gain=0.0, answers=OracleAnswers(world))
     assert asker.ahead == TASK_AHEAD > 0  # the task asker looks ahead by default
