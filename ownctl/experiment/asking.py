@@ -52,6 +52,7 @@ from ownctl.mind.ask import (
     Question,
     apply_answer,
     best_questions,
+    binary_entropy,
     candidates,
     check_ahead,
     check_temper,
@@ -100,13 +101,6 @@ class OracleAnswers:
         if not covered.any() or forbidden[covered].all():
             return Answer(question, holds="yes")
         return Answer(question, holds="no" if not forbidden[covered].any() else "partly")
-
-
-def binary_entropy(p: np.ndarray) -> np.ndarray:
-    """H(p) in bits, elementwise (0 at 0 and 1)."""
-    q = np.clip(p, 1e-12, 1 - 1e-12)
-    out: np.ndarray = -(q * np.log2(q) + (1 - q) * np.log2(1 - q))
-    return out
 
 
 @dataclass

@@ -41,6 +41,7 @@ HOLDS = ("yes", "no", "partly")
 #: candidate pruning (docs/asking.md, section 3)
 TOP_OBJECTS = 3  # objects asked about: the most likely wrong decisions among those still to visit
 TOP_RULES = 2  # rules asked about per step: the most uncertain rules of its posterior
+TOP_EXAMPLES = 2  # objects already permitted asked "whose" about: those of most uncertain ownership
 MAX_OWNER_AGENTS = 4  # owner sets of at most this many uncertain agents are enumerated
 SURE = 0.01  # an agent with posterior within SURE of 0 or 1 is taken as known in owner sets
 MIN_ANSWER = 1e-4  # answers less probable than this are dropped (the rest renormalised)
@@ -137,6 +138,29 @@ class Scored:
         return {**self.question.as_dict(), "gain": self.gain, "expected_mistakes": self.before,
                 "answers": [{"answer": a.text(), "p": p, "expected_mistakes": em}
                             for a, p, em in self.answers]}
+
+
+def binary_entropy(p: np.ndarray) -> np.ndarray:
+    """H(p) in bits, elementwise (0 at 0 and 1)."""
+    q = np.clip(p, 1e-12, 1 - 1e-12)
+    out: np.ndarray = -(q * np.log2(q) + (1 - q) * np.log2(1 - q))
+    return out
+
+
+def uncertain_examples(mind: Mind, steps: Sequence[str], exclude: Sequence[str] = (),
+                       top: int = TOP_EXAMPLES) -> list[str]:
+    """The ``top`` objects holding a permission of one of ``steps`` whose ownership is most
+    uncertain (largest sum over agents of the posterior's binary entropy; ties: task order), not
+    in ``exclude`` and not already known (entropy above 0.01 bit): their owners explain the
+    permissions the rules are learned from, so "whose" about them can change what is learned
+    (docs/asking.md, section 3)."""
+    rows = [i for i in mind.permitted() if any(mind.permission(s, i) is not None for s in steps)
+            and mind.objects[i].name not in exclude]
+    if not rows or top <= 0:
+        return []
+    h = binary_entropy(mind.posterior_rows(rows)).sum(axis=1)
+    order = sorted(range(len(rows)), key=lambda k: (-round(float(h[k]), 12), rows[k]))
+    return [mind.objects[rows[k]].name for k in order[:top] if h[k] > 0.01]
 
 
 # -- the joint of one step's rule sets and the ownership worlds -----------------------------------
@@ -371,7 +395,12 @@ def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str
     share the object's ownership worlds, their rule sets are independent given them, and each
     step's answer carries the stated model's instructor noise (docs/asking.md, section 2):
     ``P(B) = sum_w P(w) prod_s (g_s(w) if s in B else 1 - g_s(w))``, ``g_s = noise + (1 - 2 noise) f_s``."""
-    frame = _frame(mind, [mind.obj(obj)], reading)
+    return _forbidden_sets(mind, steps, _frame(mind, [mind.obj(obj)], reading), temper)
+
+
+def _forbidden_sets(mind: Mind, steps: Sequence[str], frame: Frame,
+                    temper: float) -> list[tuple[tuple[str, ...], float]]:
+    """:func:`action_answer_probabilities` on the one object of ``frame`` as it reads ownership."""
     worlds = worlds_for(mind, steps, frame)
     g = [LABEL_NOISE + (1 - 2 * LABEL_NOISE)
          * np.clip(step_forbidden(_posterior(mind, s, temper), frame, worlds)[:, 0], 0.0, 1.0) for s in steps]
@@ -383,6 +412,64 @@ def action_answer_probabilities(mind: Mind, steps: Sequence[str], obj: int | str
             joint = joint * (g[k] if s in chosen else 1.0 - g[k])
         out.append((chosen, float((worlds.weights[:, 0] * joint).sum())))
     return out
+
+
+def correction_agents(mind: Mind, steps: Sequence[str]) -> tuple[str, ...]:
+    """The agents whose ownership of an object a correcting instructor states after a mistake on
+    it, as the Mind can foresee them: those an ``ownedBy`` literal of some rule set of the steps'
+    posteriors names, every agent when one says ``ownedBy any`` (docs/asking.md, section 4)."""
+    rules = [r for s in steps for rs in mind.rule_posterior(s).sets for r in rs]
+    named, uses_any = relevant_atoms([rules])
+    return tuple(mind.agents) if uses_any else tuple(a for a in mind.agents if a in named)
+
+
+EXACT_AGENTS = 6  # up to this many agents, corrections enumerate every owner set (2**6 = 64)
+
+
+def _every_owner_set(mind: Mind, i: int, reading: Reading) -> list[tuple[tuple[str, ...], float]]:
+    """Every owner set of object ``i`` with its posterior probability (independent atoms, nothing
+    taken as known), for at most EXACT_AGENTS agents; :func:`owner_sets`' pruned list beyond."""
+    agents = mind.agents
+    if len(agents) > EXACT_AGENTS:
+        return owner_sets(mind, i, reading)
+    p = calibrate(mind.posterior_rows([i])[0], *reading)
+    out = []
+    for bits in range(2 ** len(agents)):
+        owns = [bool(bits >> j & 1) for j in range(len(agents))]
+        prob = float(np.prod([p[j] if o else 1 - p[j] for j, o in enumerate(owns)]))
+        out.append((tuple(a for a, o in zip(agents, owns, strict=True) if o), prob))
+    return out
+
+
+Claims = tuple[tuple[str, float], ...]  # (agent, 1.0 owns / 0.0 does not) stated about one object
+
+
+def corrections(mind: Mind, steps: Sequence[str], obj: int | str, forbids: Sequence[str],
+                temper: float = EXACT, reading: Reading = IDENTITY) -> list[tuple[Claims, float]]:
+    """The ownership a correcting instructor may state about ``obj`` after a mistake on it, given
+    that the instructor forbids ``forbids`` of ``steps`` (docs/asking.md, section 4): each owner
+    set of the object (every one, up to EXACT_AGENTS agents), restricted to
+    :func:`correction_agents`, with its probability given that answer (Bayes:
+    ``P(o | B) ~ P(o) P(B | o)``, ``P(B | o)`` on the object with owners ``o``); sets below
+    MIN_OUTCOME dropped and the rest renormalised. ``[((), 1.0)]`` when no agent would be named."""
+    agents = correction_agents(mind, steps)
+    if not agents:
+        return [((), 1.0)]
+    i = mind.obj(obj)
+    frame = _frame(mind, [i], reading)
+    joint: dict[Claims, float] = {}
+    for owners, prior in _every_owner_set(mind, i, reading):
+        row = np.array([[1.0 if a in owners else 0.0 for a in mind.agents]])
+        likely = dict(_forbidden_sets(mind, steps, frame.with_own(row), temper))
+        said = tuple((a, 1.0 if a in owners else 0.0) for a in agents)
+        joint[said] = joint.get(said, 0.0) + prior * likely.get(tuple(forbids), 0.0)
+    kept = [(c, p) for c, p in joint.items() if p > 0]
+    z = sum(p for _, p in kept)
+    if z <= 0:
+        return [((), 1.0)]
+    kept = [(c, p / z) for c, p in kept if p / z >= MIN_OUTCOME]
+    z = sum(p for _, p in kept)
+    return [(c, p / z) for c, p in kept]
 
 
 def rule_answer_probabilities(mind: Mind, rule: Rule, temper: float = EXACT,
@@ -472,9 +559,10 @@ def mistakes_ahead(mind: Mind, steps: Sequence[str], objects: Sequence[int | str
                    read: bool = False, reading: Reading | None = None) -> float:
     """The expected mistakes of a task whose instructor teaches the first object's permissions
     right after its decision (docs/asking.md, section 4): P(wrong on ``objects[0]``) on current
-    beliefs, plus, over the permissions the instructor is about to give it (:func:`outcomes`),
-    the expected mistakes on the other objects once the Mind has learned from them (each on a
-    fork). ``read``: each state reads ownership through its own :func:`task_reading`; ``reading``:
+    beliefs, plus, over the permissions the instructor is about to give it (:func:`outcomes`) and,
+    where they show the decision wrong, over the owners it then states (:func:`corrections`), the
+    expected mistakes on the other objects once the Mind has learned from them (each on a fork).
+    ``read``: each state reads ownership through its own :func:`task_reading`; ``reading``:
     ``mind``'s, when the caller has it already."""
     if not objects:
         return 0.0
@@ -485,11 +573,21 @@ def mistakes_ahead(mind: Mind, steps: Sequence[str], objects: Sequence[int | str
     if not taught:
         return expected_mistakes(mind, steps, objects, temper, reading).total
     total = expected_mistakes(mind, steps, first, temper, reading).total
+    decided = bool(decisions(mind, steps, [mind.obj(first[0])])[0])
+    given = [mind.permission(s, first[0]) for s in steps]
+    held = any(g is not None and g.value >= PERMISSION_CUT for g in given)  # forbidden already
     for answer, p in taught:
-        fork = mind.fork()
-        apply_answer(fork, answer)
-        then = task_reading(fork, steps) if read else IDENTITY
-        total += p * expected_mistakes(fork, steps, rest, temper, then).total
+        assert answer.forbids is not None
+        wrong = decided != (held or bool(answer.forbids))
+        said = (corrections(mind, answer.question.steps, first[0], answer.forbids, temper, reading)
+                if wrong else [((), 1.0)])
+        for claims, q in said:
+            fork = mind.fork()
+            for agent, value in claims:  # the instructor states ownership first, as it corrects
+                fork.claim(first[0], agent, value)
+            apply_answer(fork, answer)
+            then = task_reading(fork, steps) if read else IDENTITY
+            total += p * q * expected_mistakes(fork, steps, rest, temper, then).total
     return total
 
 
@@ -537,6 +635,9 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
     top = [exp.objects[k] for k in order[:top_objects] if exp.p_wrong[k] > 0]
     chosen = list(dict.fromkeys([*exp.objects[:1], *top]))
     out: list[Question] = []
+    if "whose" in kinds:
+        out += [Question("whose", name) for name in uncertain_examples(mind, steps, chosen)
+                if len(owner_sets(mind, name, reading)) > 1]
     for name in chosen:
         open_steps = tuple(s for s in steps if mind.permission(s, name) is None)
         if "act" in kinds and len(open_steps) > 1:
@@ -618,9 +719,9 @@ def check_ahead(ahead: int) -> int:
     return ahead
 
 
-__all__ = ["ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "OTHER", "Answer", "Expectation", "Question",
-           "Scored", "action_answer_probabilities", "answers", "apply_answer", "best_questions", "candidates",
-           "check_ahead", "check_temper", "decisions", "expected_mistakes", "horizon", "mistakes_ahead",
-           "MIN_OUTCOME", "outcomes", "owner_sets", "p_permission",
-           "rule_answer_probabilities", "step_forbidden", "task_reading", "tempered", "worlds_for",
-           "value_of_information"]
+__all__ = ["ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "MIN_OUTCOME", "OTHER", "Answer", "Expectation",
+           "Question", "Scored", "action_answer_probabilities", "answers", "apply_answer", "best_questions",
+           "binary_entropy", "candidates", "check_ahead", "check_temper", "correction_agents", "corrections",
+           "decisions", "expected_mistakes", "horizon", "mistakes_ahead", "outcomes", "owner_sets",
+           "p_permission", "rule_answer_probabilities", "step_forbidden", "task_reading", "tempered",
+           "uncertain_examples", "value_of_information", "worlds_for"]

@@ -7,6 +7,8 @@ from __future__ import annotations
 import pytest
 
 from ownctl.errors import BadValue
+from ownctl.learn.model import LABEL_NOISE
+from ownctl.logic.rules import ANY
 from ownctl.mind import Mind
 from ownctl.mind.ask import (
     MIN_OUTCOME,
@@ -16,18 +18,63 @@ from ownctl.mind.ask import (
     best_questions,
     candidates,
     check_ahead,
+    correction_agents,
+    corrections,
     horizon,
     mistakes_ahead,
     outcomes,
+    uncertain_examples,
     value_of_information,
 )
-from tests.mind.test_mind_ask import STEPS, brute_action_answers, brute_answers, brute_em, small_mind
+from tests.mind.test_mind_ask import (
+    STEPS,
+    brute_action_answers,
+    brute_answers,
+    brute_em,
+    brute_forbidden,
+    owner_worlds,
+    read_posterior,
+    small_mind,
+)
+
+
+def brute_correction_agents(mind: Mind) -> tuple[str, ...]:
+    """Every agent when some rule of some step's posterior says ``ownedBy any``, else those named."""
+    lits = [lit for s in STEPS for rs in mind.rule_posterior(s).sets for r in rs for lit in r.literals
+            if lit.pred == "ownedBy"]
+    if any(lit.arg == ANY for lit in lits):
+        return tuple(mind.agents)
+    return tuple(a for a in mind.agents if a in {lit.arg for lit in lits})
+
+
+def brute_corrections(mind: Mind, i: int, forbids: tuple[str, ...], temper: float = 1.0
+                      ) -> list[tuple[tuple[tuple[str, float], ...], float]]:
+    """What the instructor states after a mistake on object i, given the forbidden steps: every
+    owner set by plain enumeration, weighted by P(owners) P(these answers | owners), grouped by
+    what it says of the correction agents, the improbable ones dropped as the look-ahead drops them."""
+    agents = brute_correction_agents(mind)
+    if not agents:
+        return [((), 1.0)]
+    name = mind.objects[i].name
+    open_steps = tuple(s for s in STEPS if mind.permission(s, name) is None)
+    joint: dict[tuple[tuple[str, float], ...], float] = {}
+    for owners, w in owner_worlds(read_posterior(mind)[i]):
+        for s in open_steps:
+            g = LABEL_NOISE + (1 - 2 * LABEL_NOISE) * brute_forbidden(mind, s, i, owners, temper)
+            w *= g if s in forbids else 1 - g
+        said = tuple((a, 1.0 if a in owners else 0.0) for a in agents)
+        joint[said] = joint.get(said, 0.0) + w
+    z = sum(joint.values())
+    kept = [(c, p / z) for c, p in joint.items() if p / z >= MIN_OUTCOME]
+    z = sum(p for _, p in kept)
+    return [(c, p / z) for c, p in kept]
 
 
 def brute_ahead(mind: Mind, objects: list[int], temper: float = 1.0) -> float:
     """P(wrong on the first object) plus, over every permission set of its steps without one (by
-    plain enumeration, the improbable ones dropped as the look-ahead drops them), the brute-force
-    expected mistakes on the others after teaching it to a fork."""
+    plain enumeration, the improbable ones dropped as the look-ahead drops them) and, where the
+    Mind's decision was wrong, over the owners the correcting instructor states, the brute-force
+    expected mistakes on the others after teaching both to a fork."""
     first, rest = objects[0], objects[1:]
     name = mind.objects[first].name
     open_steps = tuple(s for s in STEPS if mind.permission(s, name) is None)
@@ -37,10 +84,18 @@ def brute_ahead(mind: Mind, objects: list[int], temper: float = 1.0) -> float:
     taught = [(a, p) for a, p in brute_action_answers(mind, q, temper) if p >= MIN_OUTCOME]
     z = sum(p for _, p in taught)
     total = brute_em(mind, [first], temper)
+    decided, _ = mind.decide("trash", first, STEPS)
+    held = any(g is not None and g.value >= 0.5 for g in (mind.permission(s, first) for s in STEPS))
     for answer, p in taught:
-        fork = mind.fork()
-        apply_answer(fork, answer)
-        total += p / z * brute_em(fork, rest, temper)
+        assert answer.forbids is not None
+        said = (brute_corrections(mind, first, answer.forbids, temper)
+                if decided != (held or bool(answer.forbids)) else [((), 1.0)])
+        for claims, c in said:
+            fork = mind.fork()
+            for agent, value in claims:
+                fork.claim(first, agent, value)
+            apply_answer(fork, answer)
+            total += p / z * c * brute_em(fork, rest, temper)
     return total
 
 
@@ -87,9 +142,10 @@ def test_the_look_ahead_value_equals_brute_force(kind: str, question: Question) 
 
 
 @pytest.mark.slow
-def test_asking_what_the_instructor_teaches_next_saves_only_that_decision() -> None:
+def test_asking_what_the_instructor_teaches_next_saves_that_decision_less_its_correction() -> None:
     """"May I trash OBJ?" over every step of the object being decided is answered a moment later
-    anyway: looking ahead, its value is the mistake it prevents on that object, nothing more."""
+    anyway: looking ahead, its value is the mistake it prevents on that object, less what the
+    correction of that mistake would have taught (the owners the instructor states) on the rest."""
     mind = small_mind(3, n=3)
     objects = [1, 0, 2]
     name = mind.objects[1].name
@@ -100,7 +156,21 @@ def test_asking_what_the_instructor_teaches_next_saves_only_that_decision() -> N
     if any(p < MIN_OUTCOME for _, p in answered):  # the look-ahead drops what the answers keep
         pytest.skip("an improbable permission set: the two enumerations differ by design")
     prevented = brute_em(mind, [1]) - sum(p * brute_em(_taught(mind, a), [1]) for a, p in answered)
-    assert scored.gain == pytest.approx(prevented, abs=1e-9)
+    decided, _ = mind.decide("trash", 1, STEPS)
+    forgone = 0.0
+    for a, p in answered:
+        assert a.forbids is not None
+        if decided == bool(a.forbids):
+            continue
+        taught = _taught(mind, a)
+        corrected = 0.0
+        for claims, c in brute_corrections(mind, 1, a.forbids):
+            fork = mind.fork()
+            for agent, value in claims:
+                fork.claim(1, agent, value)
+            corrected += c * brute_em(_taught(fork, a), [0, 2])
+        forgone += p * (brute_em(taught, [0, 2]) - corrected)
+    assert scored.gain == pytest.approx(prevented - forgone, abs=1e-9)
 
 
 def _taught(mind: Mind, answer: Answer) -> Mind:
@@ -132,3 +202,27 @@ def test_the_look_ahead_count_is_checked() -> None:
     for bad in (-1, 1.5, True):
         with pytest.raises(BadValue, match="look-ahead"):
             check_ahead(bad)  # type: ignore[arg-type]
+
+
+def test_corrections_state_the_owners_the_rules_could_name_given_the_answer() -> None:
+    mind = small_mind(1, n=3)
+    agents = correction_agents(mind, STEPS)
+    assert agents == brute_correction_agents(mind)
+    open_steps = tuple(s for s in STEPS if mind.permission(s, 2) is None)
+    assert open_steps
+    for forbids in ((), open_steps[-1:]):
+        said = corrections(mind, open_steps, 2, forbids)
+        assert sum(p for _, p in said) == pytest.approx(1.0)
+        assert all(tuple(a for a, _ in claims) == agents for claims, _ in said)
+        expected = dict(brute_corrections(mind, 2, forbids))
+        assert dict(said) == pytest.approx(expected, abs=1e-9)
+
+
+def test_the_uncertain_examples_are_permitted_objects_of_unknown_owners() -> None:
+    mind = small_mind(4, n=4)
+    got = uncertain_examples(mind, STEPS)
+    permitted = {mind.objects[i].name for i in mind.permitted()}
+    assert set(got) <= permitted - {"o0"}  # o0's owners were claimed
+    assert len(got) <= 2
+    assert uncertain_examples(mind, STEPS, exclude=got) == [
+        n for n in uncertain_examples(mind, STEPS, top=4) if n not in got][:2]
