@@ -52,10 +52,10 @@ from ownctl.mind.ask import (
     Question,
     apply_answer,
     best_questions,
-    binary_entropy,
     candidates,
     check_ahead,
     check_temper,
+    ownership_entropy,
 )
 from ownctl.world.generator import paper_blocks_world
 from ownctl.world.model import World
@@ -166,7 +166,7 @@ class QuestionAsker:
                 return None
             return best[0].question, best[0].gain
         if self.strategy == "entropy":
-            h = binary_entropy(mind.posterior()[list(remaining)]).sum(axis=1)
+            h = ownership_entropy(mind, remaining)
             k = int(np.argmax(h))  # first of the largest: task order
         else:
             rng = self.rng if self.rng is not None else np.random.default_rng(0)

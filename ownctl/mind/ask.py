@@ -45,6 +45,7 @@ TOP_EXAMPLES = 2  # objects already permitted asked "whose" about: those of most
 MAX_OWNER_AGENTS = 4  # owner sets of at most this many uncertain agents are enumerated
 SURE = 0.01  # an agent with posterior within SURE of 0 or 1 is taken as known in owner sets
 MIN_ANSWER = 1e-4  # answers less probable than this are dropped (the rest renormalised)
+EXACT_AGENTS = 6  # up to this many agents, corrections enumerate every owner set (2**6 = 64)
 MIN_OUTCOME = 0.01  # permissions about to be taught less probable than this are not looked ahead on
 EXACT = 1.0  # the temper of the stated model's own posterior (docs/asking.md, section 2)
 
@@ -147,6 +148,13 @@ def binary_entropy(p: np.ndarray) -> np.ndarray:
     return out
 
 
+def ownership_entropy(mind: Mind, rows: Sequence[int]) -> np.ndarray:
+    """Per object of ``rows``, the sum over agents of the binary entropy of its posterior ownership
+    (bits): how uncertain its owners are."""
+    out: np.ndarray = binary_entropy(mind.posterior_rows(list(rows))).sum(axis=1)
+    return out
+
+
 def uncertain_examples(mind: Mind, steps: Sequence[str], exclude: Sequence[str] = (),
                        top: int = TOP_EXAMPLES) -> list[str]:
     """The ``top`` objects holding a permission of one of ``steps`` whose ownership is most
@@ -158,7 +166,7 @@ def uncertain_examples(mind: Mind, steps: Sequence[str], exclude: Sequence[str] 
             and mind.objects[i].name not in exclude]
     if not rows or top <= 0:
         return []
-    h = binary_entropy(mind.posterior_rows(rows)).sum(axis=1)
+    h = ownership_entropy(mind, rows)
     order = sorted(range(len(rows)), key=lambda k: (-round(float(h[k]), 12), rows[k]))
     return [mind.objects[rows[k]].name for k in order[:top] if h[k] > 0.01]
 
@@ -346,19 +354,25 @@ def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | 
 
 
 # -- questions and their answers ------------------------------------------------------------------
-def owner_sets(mind: Mind, obj: int | str, reading: Reading = IDENTITY
+def owner_sets(mind: Mind, obj: int | str, reading: Reading = IDENTITY, exact: bool = False
                ) -> list[tuple[tuple[str, ...], float]]:
     """The possible owner sets of an object with their posterior probability (independent atoms).
 
     Agents within SURE of 0 or 1 are taken as known; at most MAX_OWNER_AGENTS of the others (the
     most uncertain) are enumerated, the rest taken at their likelier value; answers below
-    MIN_ANSWER are dropped and the rest renormalised (docs/asking.md, section 3).
+    MIN_ANSWER are dropped and the rest renormalised (docs/asking.md, section 3). ``exact``: every
+    owner set, nothing taken as known or dropped, for at most EXACT_AGENTS agents (beyond, the
+    pruned list).
     """
     i = mind.obj(obj)
-    p = calibrate(mind.posterior()[i], *reading)
+    p = calibrate(mind.posterior_rows([i])[0], *reading)
     agents = mind.agents
-    unsure = [j for j in range(len(agents)) if SURE < p[j] < 1 - SURE]
-    unsure = sorted(sorted(unsure, key=lambda j: (abs(p[j] - 0.5), j))[:MAX_OWNER_AGENTS])
+    if exact and len(agents) <= EXACT_AGENTS:
+        unsure = list(range(len(agents)))
+    else:
+        exact = False
+        unsure = [j for j in range(len(agents)) if SURE < p[j] < 1 - SURE]
+        unsure = sorted(sorted(unsure, key=lambda j: (abs(p[j] - 0.5), j))[:MAX_OWNER_AGENTS])
     fixed = [j for j in range(len(agents)) if j not in unsure and p[j] >= 0.5]
     out: list[tuple[tuple[str, ...], float]] = []
     for bits in range(2 ** len(unsure)):
@@ -366,15 +380,15 @@ def owner_sets(mind: Mind, obj: int | str, reading: Reading = IDENTITY
         prob = float(np.prod([p[j] if j in chosen else 1 - p[j] for j in unsure]))
         owners = tuple(agents[j] for j in sorted([*fixed, *chosen]))
         out.append((owners, prob))
-    return _normalised(out)
+    return out if exact else _normalised(out)
 
 
 T = TypeVar("T")
 
 
-def _normalised(items: Sequence[tuple[T, float]]) -> list[tuple[T, float]]:
-    """The items at least MIN_ANSWER probable, their probabilities renormalised."""
-    kept = [(a, p) for a, p in items if p >= MIN_ANSWER]
+def _normalised(items: Sequence[tuple[T, float]], floor: float = MIN_ANSWER) -> list[tuple[T, float]]:
+    """The items at least ``floor`` probable, their probabilities renormalised."""
+    kept = [(a, p) for a, p in items if p >= floor]
     z = sum(p for _, p in kept)
     return [(a, p / z) for a, p in kept] if z > 0 else []
 
@@ -423,24 +437,6 @@ def correction_agents(mind: Mind, steps: Sequence[str]) -> tuple[str, ...]:
     return tuple(mind.agents) if uses_any else tuple(a for a in mind.agents if a in named)
 
 
-EXACT_AGENTS = 6  # up to this many agents, corrections enumerate every owner set (2**6 = 64)
-
-
-def _every_owner_set(mind: Mind, i: int, reading: Reading) -> list[tuple[tuple[str, ...], float]]:
-    """Every owner set of object ``i`` with its posterior probability (independent atoms, nothing
-    taken as known), for at most EXACT_AGENTS agents; :func:`owner_sets`' pruned list beyond."""
-    agents = mind.agents
-    if len(agents) > EXACT_AGENTS:
-        return owner_sets(mind, i, reading)
-    p = calibrate(mind.posterior_rows([i])[0], *reading)
-    out = []
-    for bits in range(2 ** len(agents)):
-        owns = [bool(bits >> j & 1) for j in range(len(agents))]
-        prob = float(np.prod([p[j] if o else 1 - p[j] for j, o in enumerate(owns)]))
-        out.append((tuple(a for a, o in zip(agents, owns, strict=True) if o), prob))
-    return out
-
-
 Claims = tuple[tuple[str, float], ...]  # (agent, 1.0 owns / 0.0 does not) stated about one object
 
 
@@ -458,18 +454,15 @@ def corrections(mind: Mind, steps: Sequence[str], obj: int | str, forbids: Seque
     i = mind.obj(obj)
     frame = _frame(mind, [i], reading)
     joint: dict[Claims, float] = {}
-    for owners, prior in _every_owner_set(mind, i, reading):
+    for owners, prior in owner_sets(mind, i, reading, exact=True):
         row = np.array([[1.0 if a in owners else 0.0 for a in mind.agents]])
         likely = dict(_forbidden_sets(mind, steps, frame.with_own(row), temper))
         said = tuple((a, 1.0 if a in owners else 0.0) for a in agents)
         joint[said] = joint.get(said, 0.0) + prior * likely.get(tuple(forbids), 0.0)
-    kept = [(c, p) for c, p in joint.items() if p > 0]
-    z = sum(p for _, p in kept)
+    z = sum(joint.values())
     if z <= 0:
         return [((), 1.0)]
-    kept = [(c, p / z) for c, p in kept if p / z >= MIN_OUTCOME]
-    z = sum(p for _, p in kept)
-    return [(c, p / z) for c, p in kept]
+    return _normalised([(c, p / z) for c, p in joint.items()], MIN_OUTCOME)
 
 
 def rule_answer_probabilities(mind: Mind, rule: Rule, temper: float = EXACT,
@@ -550,9 +543,7 @@ def outcomes(mind: Mind, steps: Sequence[str], obj: int | str, temper: float = E
     name = mind.objects[mind.obj(obj)].name
     question = Question("act", name, open_steps[-1], steps=open_steps)
     probs = action_answer_probabilities(mind, open_steps, obj, temper, reading)
-    kept = [(Answer(question, forbids=b), p) for b, p in probs if p >= MIN_OUTCOME]
-    z = sum(p for _, p in kept)
-    return [(a, p / z) for a, p in kept]
+    return _normalised([(Answer(question, forbids=b), p) for b, p in probs], MIN_OUTCOME)
 
 
 def mistakes_ahead(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], temper: float = EXACT,
@@ -723,5 +714,5 @@ __all__ = ["ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "MIN_OUTCOME", "OTHER", "A
            "Question", "Scored", "action_answer_probabilities", "answers", "apply_answer", "best_questions",
            "binary_entropy", "candidates", "check_ahead", "check_temper", "correction_agents", "corrections",
            "decisions", "expected_mistakes", "horizon", "mistakes_ahead", "outcomes", "owner_sets",
-           "p_permission", "rule_answer_probabilities", "step_forbidden", "task_reading", "tempered",
-           "uncertain_examples", "value_of_information", "worlds_for"]
+           "ownership_entropy", "p_permission", "rule_answer_probabilities", "step_forbidden", "task_reading",
+           "tempered", "uncertain_examples", "value_of_information", "worlds_for"]
