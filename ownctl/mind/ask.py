@@ -206,6 +206,12 @@ def _layout(rp: RulePosterior) -> _Layout:
     return out
 
 
+def _set_rules(rp: RulePosterior) -> tuple[Rule, ...]:
+    """The distinct rules of ``rp``'s rule sets (not its allow norms), from its layout."""
+    lay = _layout(rp)
+    return tuple(lay.pool[k] for k in np.unique(lay.index[lay.index >= 0]))
+
+
 def _named(posteriors: Sequence[RulePosterior]) -> tuple[str, ...]:
     return tuple(sorted({a for rp in posteriors for a in _layout(rp).named}))
 
@@ -432,8 +438,7 @@ def correction_agents(mind: Mind, steps: Sequence[str]) -> tuple[str, ...]:
     """The agents whose ownership of an object a correcting instructor states after a mistake on
     it, as the Mind can foresee them: those an ``ownedBy`` literal of some rule set of the steps'
     posteriors names, every agent when one says ``ownedBy any`` (docs/asking.md, section 4)."""
-    rules = [r for s in steps for rs in mind.rule_posterior(s).sets for r in rs]
-    named, uses_any = relevant_atoms([rules])
+    named, uses_any = relevant_atoms([_set_rules(mind.rule_posterior(s)) for s in steps])
     return tuple(mind.agents) if uses_any else tuple(a for a in mind.agents if a in named)
 
 
