@@ -93,19 +93,24 @@ def atom_truth(lit: Literal, frame: Frame, worlds: Worlds) -> np.ndarray:
     return np.zeros((width, 1), dtype=bool)
 
 
-def rule_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarray:
-    """(W, n) bool: does some rule's conjunction hold in world w for object i."""
+def rules_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarray:
+    """(R, W, n) bool: does rule r's conjunction hold in world w for object i, for each of
+    ``rules``; each atom's truth is computed once for them all."""
     width = len(worlds.bits)
-    out = np.zeros((width, frame.n), dtype=bool)
+    out = np.ones((len(rules), width, frame.n), dtype=bool)
     atoms: dict[tuple[str, str], np.ndarray] = {}
-    for rule in rules:
-        holds = np.ones((width, frame.n), dtype=bool)
+    for k, rule in enumerate(rules):
         for lit in rule.literals:
             if lit.atom not in atoms:
                 atoms[lit.atom] = atom_truth(lit, frame, worlds)
             value = atoms[lit.atom]
-            holds &= ~value if lit.negated else value
-        out |= holds
+            out[k] &= ~value if lit.negated else value
+    return out
+
+
+def rule_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarray:
+    """(W, n) bool: does some rule's conjunction hold in world w for object i."""
+    out: np.ndarray = np.any(rules_truth(rules, frame, worlds), axis=0)
     return out
 
 

@@ -30,7 +30,15 @@ from ownctl.learn.induce import calibration_choices
 from ownctl.learn.model import LABEL_NOISE
 from ownctl.learn.posterior import RulePosterior
 from ownctl.logic.frame import Frame
-from ownctl.logic.prob import OTHER, Worlds, enumerate_worlds, p_forbidden, relevant_atoms, rule_truth
+from ownctl.logic.prob import (
+    OTHER,
+    Worlds,
+    enumerate_worlds,
+    p_forbidden,
+    relevant_atoms,
+    rule_truth,
+    rules_truth,
+)
 from ownctl.logic.rules import Norm, Rule
 from ownctl.mind.core import PERMISSION_CUT, Mind
 
@@ -283,8 +291,8 @@ def _set_table(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
     """(K, W, n) truth of each rule set of ``rp`` (minus its allow norms) in every world."""
     lay = _layout(rp)
     shape = (len(worlds.bits), frame.n)
-    rows = [rule_truth([r], frame, worlds) for r in lay.pool]
-    table = np.stack([*rows, np.zeros(shape, dtype=bool)])  # row -1: no rule
+    table = np.concatenate([rules_truth(lay.pool, frame, worlds),
+                            np.zeros((1, *shape), dtype=bool)])  # row -1: no rule
     out: np.ndarray = table[lay.index[:, 0]]
     for c in range(1, lay.index.shape[1]):
         out = out | table[lay.index[:, c]]

@@ -92,3 +92,29 @@ def test_crisp_any_arguments() -> None:
     assert p_forbidden(rules("forbid trash if inArea nowhere"), f).tolist() == [0.0, 0.0, 0.0]
     got = p_forbidden(rules("forbid trash if not isColored red and inArea any"), f)
     assert got.tolist() == [0.0, 0.0, 1.0]
+
+
+def test_each_rules_truth_is_that_rule_alone_and_their_union_is_the_rule_sets() -> None:
+    from ownctl.logic.prob import enumerate_worlds, rule_truth, rules_truth
+
+    colours = ["red", "blue", None]
+    f = frame(["a", "b"], [[0.6, 0.5], [0.1, 0.9], [0.0, 0.0]], colours)
+    rs = rules("forbid trash if ownedBy a and isColored red", "forbid trash if not ownedBy any",
+               "forbid trash if ownedBy b and not isColored blue", "forbid trash if isColored blue")
+    worlds = enumerate_worlds(f, ("a",), with_other=True)  # atoms: a, and b folded into the other atom
+
+    def holds(k: int, w: int, i: int) -> bool:  # by hand: each literal read off world w and object i
+        a, other = (bool(x) for x in worlds.bits[w])
+        truth = [[a and colours[i] == "red"], [not (a or other)], [False], [colours[i] == "blue"]][k]
+        return all(truth)  # "ownedBy b" is not an atom of these worlds: b owns nothing in them
+
+    each = rules_truth(rs, f, worlds)
+    assert each.shape == (len(rs), len(worlds.bits), 3)
+    for k in range(len(rs)):
+        for w in range(len(worlds.bits)):
+            for i in range(3):
+                assert each[k, w, i] == holds(k, w, i)
+    union = rule_truth(rs, f, worlds)
+    assert all(union[w, i] == any(holds(k, w, i) for k in range(len(rs)))
+               for w in range(len(worlds.bits)) for i in range(3))
+    assert rule_truth([], f, worlds).shape == (len(worlds.bits), 3) and not rule_truth([], f, worlds).any()
