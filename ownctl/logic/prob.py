@@ -93,7 +93,7 @@ def atom_truth(lit: Literal, frame: Frame, worlds: Worlds) -> np.ndarray:
     return np.zeros((width, 1), dtype=bool)
 
 
-def rules_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarray:
+def each_rule_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarray:
     """(R, W, n) bool: does rule r's conjunction hold in world w for object i, for each of
     ``rules``; each atom's truth is computed once for them all."""
     width = len(worlds.bits)
@@ -110,7 +110,7 @@ def rules_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarr
 
 def rule_truth(rules: Sequence[Rule], frame: Frame, worlds: Worlds) -> np.ndarray:
     """(W, n) bool: does some rule's conjunction hold in world w for object i."""
-    out: np.ndarray = np.any(rules_truth(rules, frame, worlds), axis=0)
+    out: np.ndarray = np.any(each_rule_truth(rules, frame, worlds), axis=0)
     return out
 
 

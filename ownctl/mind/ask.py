@@ -33,11 +33,11 @@ from ownctl.logic.frame import Frame
 from ownctl.logic.prob import (
     OTHER,
     Worlds,
+    each_rule_truth,
     enumerate_worlds,
     p_forbidden,
     relevant_atoms,
     rule_truth,
-    rules_truth,
 )
 from ownctl.logic.rules import Norm, Rule
 from ownctl.mind.core import PERMISSION_CUT, Mind
@@ -291,7 +291,7 @@ def _set_table(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
     """(K, W, n) truth of each rule set of ``rp`` (minus its allow norms) in every world."""
     lay = _layout(rp)
     shape = (len(worlds.bits), frame.n)
-    table = np.concatenate([rules_truth(lay.pool, frame, worlds),
+    table = np.concatenate([each_rule_truth(lay.pool, frame, worlds),
                             np.zeros((1, *shape), dtype=bool)])  # row -1: no rule
     out: np.ndarray = table[lay.index[:, 0]]
     for c in range(1, lay.index.shape[1]):

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 
 from ownctl.logic.frame import Frame
-from ownctl.logic.prob import p_forbidden
+from ownctl.logic.prob import each_rule_truth, enumerate_worlds, p_forbidden, rule_truth
 from ownctl.logic.rules import parse_rule
 
 EXACT = 1e-12
@@ -94,9 +94,7 @@ def test_crisp_any_arguments() -> None:
     assert got.tolist() == [0.0, 0.0, 1.0]
 
 
-def test_each_rules_truth_is_that_rule_alone_and_their_union_is_the_rule_sets() -> None:
-    from ownctl.logic.prob import enumerate_worlds, rule_truth, rules_truth
-
+def test_each_rule_truth_is_worked_out_literal_by_literal_and_rule_truth_is_their_union() -> None:
     colours = ["red", "blue", None]
     f = frame(["a", "b"], [[0.6, 0.5], [0.1, 0.9], [0.0, 0.0]], colours)
     rs = rules("forbid trash if ownedBy a and isColored red", "forbid trash if not ownedBy any",
@@ -108,7 +106,7 @@ def test_each_rules_truth_is_that_rule_alone_and_their_union_is_the_rule_sets() 
         truth = [[a and colours[i] == "red"], [not (a or other)], [False], [colours[i] == "blue"]][k]
         return all(truth)  # "ownedBy b" is not an atom of these worlds: b owns nothing in them
 
-    each = rules_truth(rs, f, worlds)
+    each = each_rule_truth(rs, f, worlds)
     assert each.shape == (len(rs), len(worlds.bits), 3)
     for k in range(len(rs)):
         for w in range(len(worlds.bits)):
