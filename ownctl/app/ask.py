@@ -56,6 +56,7 @@ def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: i
     ranked = best_questions(mind, steps, idx, top=top, temper=temper, read=read, ahead=ahead) if idx else []
     return {"task": task, "steps": list(steps), "objects": list(before.objects),
             "expected_mistakes": before.total, "temper": temper, "read": read, "ahead": ahead,
+            "permissions": sum(len(mind.perms[s]) for s in steps),
             "per_object": [{"object": n, "decision": "forbidden" if d else "permitted",
                             "p_forbidden": float(p), "p_wrong": float(w)}
                            for n, d, p, w in zip(before.objects, before.decisions, before.p_forbidden,
@@ -65,7 +66,8 @@ def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: i
 
 def questions(ctx: AppContext, task: str = "trashAll", objects: Sequence[str] | None = None,
               top: int = 3) -> dict[str, Any]:
-    """``{"task", "steps", "objects", "expected_mistakes", "per_object", "questions"}``; writes nothing."""
+    """``{"task", "steps", "objects", "expected_mistakes", "permissions", "per_object", "questions"}``
+    (``permissions``: how many the task's steps hold); writes nothing."""
     with ctx.read() as tx:
         return _ranked(tx, ctx.now, task, objects, top)
 

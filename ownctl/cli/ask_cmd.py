@@ -54,4 +54,12 @@ def ask(
             for q in data["questions"]]
     title = (f"{data['task']}: {data['expected_mistakes']:.2f} expected mistakes on "
              f"{len(data['objects'])} objects")
-    emit(data, json_out, quiet, table(title, ["question", "gain", "answers (p)"], rows))
+    listing = table(title, ["question", "gain", "answers (p)"], rows)
+
+    def show() -> None:
+        listing()
+        if not data["permissions"]:  # docs/asking.md, section 4: a task asks only after its first one
+            typer.echo(f"No permission of {', '.join(data['steps'])} is known yet: these gains rest on the "
+                       "prior over rule sets, and a task asks only after its first permission.")
+
+    emit(data, json_out, quiet, show)

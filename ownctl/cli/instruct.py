@@ -73,6 +73,11 @@ def _instruct(
             raise RuleSyntaxError(f"'{sign} {action} on' takes exactly one object, got {words[1:] or 'none'}")
         value = p if sign == "forbid" else 1.0 - p
         return instruct.add_permission(app_ctx(ctx), action, words[1], value, speaker)
+    if words and words[0] != "if":
+        hint = f" (one object: '{sign} {action} on {words[0]}')" if len(words) == 1 else ""
+        raise RuleSyntaxError(f"'{sign} {action} {' '.join(words)}': after the action, expected 'on OBJ' or "
+                              f"'if CONDITION', got {words[0]!r}{hint}; expected one of: if, on",
+                              ["if", "on"])
     return instruct.add_norm(app_ctx(ctx), " ".join([sign, action, *words]), speaker)
 
 

@@ -45,7 +45,18 @@ def test_ask_lists_questions_with_gains_and_writes_nothing(world: Ownctl) -> Non
         assert sum(a["p"] for a in q["answers"]) == pytest.approx(1.0)
     assert data["expected_mistakes"] >= 0
     assert "expected mistakes" in world("ask", "--objects", "can,key").stdout
+    assert data["permissions"] == 2 and "No permission" not in world("ask", "--top", "1").stdout
     assert world.digest() == before
+
+
+def test_ask_says_when_its_gains_rest_on_the_prior_alone(tmp_path: Path, ownctl: Ownctl) -> None:
+    path = tmp_path / "world.toml"
+    path.write_text(WORLD, encoding="utf-8")
+    ownctl("world", "load", str(path))
+    assert ownctl.json("ask", "--task", "collect", "--top", "1")["permissions"] == 0
+    assert "No permission of find, pickUp, collect is known yet" in ownctl("ask", "--task", "collect").stdout
+    ownctl("allow", "collect", "on", "can")  # a permission of one step is enough to say nothing
+    assert "No permission" not in ownctl("ask", "--task", "collect", "--top", "1").stdout
 
 
 ANSWERS = {"may": "yes, you may", "whose": "It's xuan's", "rule": "yes"}

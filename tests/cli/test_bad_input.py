@@ -135,6 +135,12 @@ def test_unknown_names_list_the_valid_ones(world: Ownctl) -> None:
     assert "trash" in world.json("check", "thrash", "wallet", code=1)["valid"]
 
 
+def test_a_forgotten_on_is_named_with_both_forms(world: Ownctl) -> None:
+    error = world.json("forbid", "trash", "wallet", code=1)
+    assert error["valid"] == ["if", "on"] and "(one object: 'forbid trash on wallet')" in error["error"]
+    assert "got 'mug'" in world.json("allow", "trash", "mug", "wallet", code=1)["error"]
+
+
 @pytest.mark.parametrize("args", USAGE_ERRORS, ids=lambda a: " ".join(a) or "nothing")
 def test_usage_error_is_one_line_exit_2_and_writes_nothing(world: Ownctl, args: tuple[str, ...]) -> None:
     before = world.digest()
