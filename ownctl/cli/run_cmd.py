@@ -72,8 +72,11 @@ def run(
                           on_step=on_step, ask=ask)
 
     if shown:
-        with Live(grid, console=console, refresh_per_second=8, transient=False):
+        # transient: if the run fails, its partial table goes with it (nothing of the run was saved),
+        # and the error stays the one line on stderr; on success the finished table is printed
+        with Live(grid, console=console, refresh_per_second=8, transient=True):
             result = play()
+        console.print(grid)
         console.print()
     else:
         result = play()

@@ -79,6 +79,8 @@ USER_ERRORS: list[tuple[str, ...]] = [
     ("reset", "perms"),
     ("log", "--limit", "0"),
     ("world", "load", "missing.toml"),
+    ("run", "trashAll", "--kinematic"),  # no 'trash' area: the live table goes, the error stays one line
+    ("run", "collectAll", "--kinematic", "--ask", "2"),
 ]
 
 USAGE_ERRORS: list[tuple[str, ...]] = [
