@@ -46,6 +46,7 @@ from ownctl.language import (
 from ownctl.language.context import Facts
 from ownctl.language.lexicon import COLORS
 from ownctl.logic.names import check_name
+from ownctl.logic.prob import noisy_or
 from ownctl.world.model import Area
 
 
@@ -115,7 +116,13 @@ def _owners_answer(data: dict[str, Any]) -> str:
         return f"{data['object']} belongs to {parts}."
     top = data["owners"][0] if data["owners"] else None
     best = f"; the likeliest is {top['agent']} with p={top['p']:.2g}" if top else ""
-    return f"I think nobody owns {data['object']}{best}."
+    # no agent is likely, yet several half-likely ones can make "someone owns it" likely, which is
+    # what the norms on "ownedBy any" decide on: say which
+    someone = float(noisy_or([o["p"] for o in data["owners"]]))
+    if someone >= 0.5:
+        return (f"I am not sure who owns {data['object']}: probably someone does (p={someone:.2g}), "
+                f"but no one agent is likely{best}.")
+    return f"I think nobody owns {data['object']} (p={1.0 - someone:.2g}){best}."
 
 
 def _check_answer(data: dict[str, Any], reason: str) -> str:

@@ -50,14 +50,20 @@ def relevant_atoms(rule_sets: Iterable[Sequence[Rule]]) -> tuple[tuple[str, ...]
     return tuple(sorted(named)), uses_any
 
 
+def noisy_or(p: np.ndarray | Sequence[float], axis: int = -1) -> np.ndarray:
+    """P(at least one holds) of independent ownership atoms with probabilities ``p`` along ``axis``:
+    what ``ownedBy any`` means under independent atoms (0 over no atom)."""
+    out: np.ndarray = 1.0 - np.prod(1.0 - np.asarray(p, dtype=float), axis=axis)
+    return out
+
+
 def other_probability(frame: Frame, named: Iterable[str]) -> np.ndarray:
     """Noisy-or over the agents not in ``named``: P(owned by some unnamed agent), per object."""
     named = set(named)
     keep = [j for j, a in enumerate(frame.agents) if a not in named]
     if not keep:
         return np.zeros(frame.n)
-    out: np.ndarray = 1.0 - np.prod(1.0 - frame.own[:, keep], axis=1)
-    return out
+    return noisy_or(frame.own[:, keep], axis=1)
 
 
 def enumerate_worlds(frame: Frame, named: Sequence[str], with_other: bool) -> Worlds:

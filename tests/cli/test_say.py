@@ -207,3 +207,14 @@ def test_an_overlong_utterance_is_refused_at_once(table_world: Ownctl) -> None:
     refused = table_world("say", "The mug is mine. " * 300, "--as", "xuan", code=1)
     assert "characters long; I understand at most 4000" in refused.stderr
     assert "Traceback" not in refused.stderr
+
+
+def test_whose_says_someone_owns_it_when_no_one_agent_is_likely_but_their_union_is(
+        table_world: Ownctl) -> None:
+    for agent in ("alexis", "xuan"):
+        table_world("claim", "mug", agent, "--p", "0.4")
+        table_world("claim", "pen", agent, "--p", "0.2")
+    mug = table_world.json("say", "Whose is the mug?")["reply"]
+    assert "probably someone does (p=0.64)" in mug and "nobody" not in mug  # 1 - 0.6 * 0.6
+    pen = table_world.json("say", "Whose is the pen?")["reply"]
+    assert "I think nobody owns pen (p=0.64)" in pen  # 0.8 * 0.8
