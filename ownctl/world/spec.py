@@ -116,6 +116,10 @@ def check_norm(source: str, text: Any, agents: Sequence[str], areas: Sequence[st
         norm = parse_norm(text)
     except OwnctlError as exc:
         raise type(exc)(f"{source}: {exc.message}", exc.valid) from None
+    if norm.sign != "forbid":
+        # the ground truth (the simulated instructor, the metrics) reads forbid rules only
+        raise BadValue(f"{source}: true norm {text!r} is an allow norm; a world's true norms are forbid "
+                       f"rules (put the exception into the rule it limits, as 'and not ...')", ["forbid"])
     for lit in norm.rule.literals:
         known = {"ownedBy": agents, "inArea": areas}.get(lit.pred)
         if known is not None and lit.arg != ANY and lit.arg not in known:

@@ -61,6 +61,7 @@ def test_world_from_dict_validates_and_canonicalises() -> None:
         ({"agents": ["a b"]}, BadName, ["w.toml", "invalid agent name"]),
         ({"norms": ["forbid thrash"]}, RuleSyntaxError, ["w.toml", "unknown action"]),
         ({"norms": ["forbid trash if ownedBy bob"]}, BadValue, ["unknown agent 'bob'"]),
+        ({"norms": ["allow trash if isColored red"]}, BadValue, ["is an allow norm", "forbid rules"]),
         ({"areas": [{"name": "a", "box": [1, 1, 0, 0]}]}, BadValue, ["x0 <= x1"]),
         ({"areas": [{"name": "a", "box": [0, 0, 1]}]}, BadValue, ["4 finite numbers"]),
         ({"objects": [{"name": "o", "owners": {"bob": 1.0}}]}, BadValue, ["unknown key 'bob'"]),
