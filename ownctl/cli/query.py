@@ -103,16 +103,19 @@ def owners(
 
 @rules.command("list")
 def rules_list(ctx: typer.Context, json_out: JsonOpt = False, quiet: QuietOpt = False) -> None:
-    """List the rules in canonical text, with their accuracy.
+    """List the rules in canonical text, with their accuracy and posterior.
 
-    The accuracy is the rule's soft agreement with its action's stored permissions.
+    The accuracy is the rule's soft agreement with its action's stored permissions; the posterior,
+    how sure the posterior over rule sets is of what the rule says on them (docs/learning.md).
+    Both are blank for an action without permissions and for allow norms.
     """
     from ownctl.app import query
 
     rows = query.list_rules(app_ctx(ctx))
-    cells = [[r["id"], r["text"], r["origin"], _provenance(r.get("provenance") or {}), r["accuracy"]]
-             for r in rows]
-    emit(rows, json_out, quiet, table("rules", ["id", "rule", "origin", "from", "accuracy"], cells))
+    cells = [[r["id"], r["text"], r["origin"], _provenance(r.get("provenance") or {}), r["accuracy"],
+              r["posterior"]] for r in rows]
+    emit(rows, json_out, quiet, table("rules", ["id", "rule", "origin", "from", "accuracy", "posterior"],
+                                      cells))
 
 
 def _provenance(prov: dict) -> str:

@@ -6,6 +6,8 @@ from typing import TYPE_CHECKING
 
 import pytest
 
+from ownctl.cli.common import fmt
+
 if TYPE_CHECKING:
     from tests.cli.conftest import Ownctl
 
@@ -252,3 +254,14 @@ def test_the_store_can_use_the_papers_learner(table_world: Ownctl) -> None:
     assert "valid learners: ours, paper" in table_world("config", "set", "learner", "magic", code=1).stderr
     table_world("forbid", "trash", "on", "wallet")  # the paper's first example: the always-rule
     assert [r["text"] for r in table_world.json("rules", "list")] == ["forbid trash"]
+
+
+def test_rules_list_shows_each_rules_posterior_as_its_json_does(table_world: Ownctl) -> None:
+    table_world("forbid", "trash", "on", "wallet")  # wallet is alexis's: a rule is learned
+    rule = table_world.json("rules", "list")[0]
+    assert rule["origin"] == "learned" and 0.0 < rule["posterior"] <= 1.0
+    lines = table_world("rules", "list").stdout.splitlines()
+    header = next(line for line in lines if "accuracy" in line)
+    assert header.rstrip(" ┃").split("┃")[-1].strip() == "posterior"
+    first = next(line for line in lines if line.startswith("│ ") and rule["text"].split()[0] in line)
+    assert first.rstrip(" │").split("│")[-1].strip() == fmt(rule["posterior"])
