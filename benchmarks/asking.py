@@ -2,7 +2,7 @@
 
     python benchmarks/asking.py [--trials 8] [--seed 0] [--budget 4] [--kinds act,may,whose]
         [--temper 0.5] [--min-gain 0.05] [--taught] [--ahead K] [--as-given] [--hindsight] [--predictions]
-        [--json]
+        [--scripted] [--json]
 
 On the asking experiment's worlds (``ownctl experiment task --ask``: trial ``t`` of task ``c`` is
 the paper's blocks world drawn with ``[seed, c, t]``), for collectAll and trashAll:
@@ -29,6 +29,10 @@ the paper's blocks world drawn with ``[seed, c, t]``), for collectAll and trashA
   copy of the executor, no further question) is asked if it saves at least one, greedily. It reads
   the future, so no strategy that does not can do as well on average; it is slow (one run of the
   rest of the task per candidate and object, about a minute per trial);
+- ``--scripted`` (instead of ours): a scripted strategy with no value of information, "whose" of
+  the earliest permitted object of uncertain ownership, then "whose" of each object about to be
+  decided while its ownership is uncertain (``GroundExamples``: every permission the instructor
+  gives next is of an object with known owners); seconds per trial;
 - ``--predictions`` (instead of the above): with no question, how well the expected-mistakes
   model predicts each decision after the first permission: per task the decisions, the actual
   mistakes, and the sum and log loss of P(wrong) with ownership as given and read as the learner
@@ -162,6 +166,35 @@ class Hindsight:
             self.asked.append(question)
 
 
+class GroundExamples:
+    """A scripted asker (no value of information): once the robot holds a permission, "whose" of
+    the earliest example (an object holding a permission of the task's steps) whose ownership is
+    uncertain, then before each object "whose" of that object while its ownership is uncertain,
+    so every permission the instructor gives next is of an object with known owners."""
+
+    def __init__(self, world: World, steps: Sequence[str], budget: int) -> None:
+        self.oracle, self.steps, self.budget = OracleAnswers(world), tuple(steps), budget
+        self.asked: list[Question] = []
+
+    def before(self, mind: Mind, obj: int, remaining: Sequence[int]) -> None:
+        """Ask one "whose" question before ``obj`` while the budget lasts."""
+        if len(self.asked) >= self.budget or not any(mind.perms.values()):
+            return
+        def unsure(i: int) -> bool:
+            return bool(np.any((mind.posterior_rows([i])[0] > 0.01) & (mind.posterior_rows([i])[0] < 0.99)))
+        pick: int | None = None
+        if not self.asked:
+            examples = dict.fromkeys(mind.obj(n) for s in self.steps for n in mind.perms[s])
+            pick = next((i for i in sorted(examples) if unsure(i)), None)
+        if pick is None and unsure(obj):
+            pick = obj
+        if pick is None:
+            return
+        question = Question("whose", mind.objects[pick].name)
+        apply_answer(mind, self.oracle.answer(question, mind))
+        self.asked.append(question)
+
+
 class Predictions:
     """An asker that asks nothing and records, before each decision once the robot holds a
     permission, P(wrong) of that decision as the expected-mistakes model gives it."""
@@ -213,6 +246,8 @@ def run(c: int, t: int, seed: int, mode: str, budget: int, kinds: Sequence[str],
                               temper=temper, read=read, ahead=ahead)
     elif mode == "hindsight":
         inner = Hindsight(world, task, executor, budget, kinds)
+    elif mode == "scripted":
+        inner = GroundExamples(world, steps, budget)
     probe = Classifier(inner, world, steps)
     records = run_objects(mind, truth, task, executor, OracleInstructor(world), asker=probe)
     return sum(r.mistake for r in records), probe.classes
@@ -251,6 +286,7 @@ def main() -> None:
     parser.add_argument("--as-given", action="store_true")
     parser.add_argument("--hindsight", action="store_true")
     parser.add_argument("--predictions", action="store_true")
+    parser.add_argument("--scripted", action="store_true")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
     kinds = [k.strip() for k in args.kinds.split(",")]
@@ -265,6 +301,9 @@ def main() -> None:
         modes = []
     elif args.hindsight:
         modes.append((f"hindsight, {args.budget} questions", "hindsight", args.budget))
+    if args.scripted and not args.predictions:  # instead of ours (no value of information: seconds)
+        modes = [m for m in modes if m[1] != "ours" or not m[2]]
+        modes.insert(1, (f"examples' owners, {args.budget} questions", "scripted", args.budget))
     if not 0 < args.temper <= 1:
         parser.error(f"--temper must be in (0, 1], got {args.temper}")
     doc: dict[str, Any] = {"trials": args.trials, "seed": args.seed, "budget": args.budget,
