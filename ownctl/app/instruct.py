@@ -79,14 +79,17 @@ def add_permission(ctx: AppContext, action: str, obj: str, value: float, speaker
         permission_id = tx.knowledge.permission_id(action, tx.things.object(obj).id)
     verb = "forbidden" if value >= 0.5 else "allowed"
     learned = ""
-    if outcome is not None and outcome.induced:
+    if outcome is not None and outcome.excepted:
+        learned = (f"; an allow norm of {action} covers {obj}: an exception, decided by this permission and "
+                   "not learned from")
+    elif outcome is not None and outcome.induced:
         learned = "; induction ran, rules of " + action + ": " + ("; ".join(rules) or "(none)")
     elif outcome is not None:
         learned = f"; rules already agree with {outcome.accuracy:.0%} of the examples (kept for inference)"
     return Done(
         f"noted: {action} {verb} on {obj} (permission {permission_id}){learned}",
         {"id": permission_id, "action": action, "object": obj, "value": value,
-         "induced": bool(outcome and outcome.induced),
+         "induced": bool(outcome and outcome.induced), "exception": bool(outcome and outcome.excepted),
          "accuracy": None if outcome is None else outcome.accuracy, "rules": rules},
     )
 

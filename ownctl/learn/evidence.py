@@ -68,8 +68,9 @@ class Evidence:
         self._rules: dict[Rule, np.ndarray] = {}
         self._stacks: dict[tuple[Literal, ...], np.ndarray] = {}
 
-    def reordered(self, order: Sequence[int]) -> Evidence:
-        """The same examples in the order ``order`` (a permutation), sharing the enumerated worlds."""
+    def reordered(self, order: Sequence[int] | np.ndarray) -> Evidence:
+        """The examples at the indices ``order`` (a permutation, or a subset), in that order, sharing
+        the enumerated worlds."""
         out = object.__new__(Evidence)
         idx = np.asarray(order, dtype=int)
         out.frame = self.frame.take(idx)
@@ -168,6 +169,17 @@ class Evidence:
     def q(self, rules: Sequence[Rule]) -> np.ndarray:
         """P(forbidden) per example under a rule set."""
         return self.prob(self.union(rules)) if rules else np.zeros(self.n)
+
+    def beyond(self, allows: Sequence[Rule]) -> np.ndarray:
+        """Indices of the examples on which no allow norm of ``allows`` surely holds.
+
+        Where an allow norm surely holds, every rule set minus the allow norms says "allowed", so the
+        example's likelihood is the same under every rule set: learning without it compares rule sets
+        exactly as with it, and a permission that contradicts a stated allow norm (an exception,
+        decided by the permission itself) is not generalised to other objects."""
+        if not allows or self.n == 0:
+            return np.arange(self.n)
+        return np.flatnonzero(self.q(allows) < 1.0 - 1e-12)
 
     def soft_accuracy(self, rules: Sequence[Rule]) -> float:
         """Mean agreement between each permission and the rules' probability (1 with no examples)."""

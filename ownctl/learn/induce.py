@@ -50,6 +50,7 @@ class Outcome:
     induced: bool
     accuracy: float
     given: tuple[Rule, ...] = ()  # after a norm: the rules that stand for what instructors said
+    excepted: bool = False  # the permission lies under a stated allow norm: an exception, not learned from
 
 
 
@@ -249,15 +250,20 @@ def learn_permission(
     ownership changes nothing (the stated model weighs it), and the result depends only on the set of
     permissions, not on their order. Most permissions are settled by certifying the previous
     re-induction (:func:`ownctl.learn.exact.certify_greedy`) instead of searching again. ``induced`` says
-    whether the rules changed.
+    whether the rules changed. Examples on which a stated allow norm surely holds are left out
+    (:meth:`Evidence.beyond`: under every rule set minus the allow norms they are allowed), so a
+    permission that contradicts an allow norm is an exception (``excepted``), never the seed of a rule.
     """
     accuracy = ev.soft_accuracy(rules)
     if cfg.learner == "ours":
-        if ev.n == 0:
-            return Outcome(tuple(rules), False, accuracy)
-        ind, trace = calibrated_inducer(action, ev, vocab, cfg, given, new)
+        kept = ev.beyond(allows)
+        at = np.flatnonzero(kept == new)
+        if len(kept) == 0:
+            return Outcome(tuple(rules), False, accuracy, excepted=True)
+        ind, trace = calibrated_inducer(action, ev.reordered(kept), vocab, cfg, given,
+                                        int(at[0]) if len(at) else None)
         learned = tuple(ind.reinduce(given, allows, trace))
-        return Outcome(learned, learned != tuple(rules), accuracy)
+        return Outcome(learned, learned != tuple(rules), accuracy, excepted=not len(at))
     if accuracy >= cfg.accuracy_gate:
         return Outcome(tuple(rules), False, accuracy)
     ind = Inducer(action, ev, vocab, cfg)
@@ -290,7 +296,8 @@ def learn_norm(
     if norm.sign == "forbid":
         if ind.ours:
             said = ind.cover_rule(stated, norm.rule)
-            best, trace = calibrated_inducer(norm.rule.action, ev, vocab, cfg, said)
+            best, trace = calibrated_inducer(norm.rule.action, ev.reordered(ev.beyond(allows)), vocab, cfg,
+                                             said)
             current = best.reinduce(said, allows, trace)
             return Outcome(tuple(current), True, accuracy, tuple(specialising(said, current)))
         current = ind.cover_rule(list(rules), norm.rule)

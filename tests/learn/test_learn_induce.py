@@ -190,6 +190,42 @@ def test_the_ours_learner_keeps_allow_norms_in_force_for_later_forbid_norms() ->
     assert texts(paper.rules) == ["forbid trash if ownedBy any"]  # the original forgot allow norms
 
 
+def test_a_permission_under_an_allow_norm_is_an_exception_not_the_seed_of_a_rule() -> None:
+    """Forbidding trash on a red object after "allow trash if red" used to teach "forbid trash" minus
+    the allow norm, "forbid trash if not isColored red": a rule that misses its own example and
+    forbids every other object."""
+    objs = [ObjectSpec(f"o{i}", c, (0.1 * i, 0.0, 0.0)) for i, c in enumerate(["red", "blue", "blue"])]
+    m = mind(objs, "ours", ("a1",))
+    m.instruct(parse_norm("allow trash if isColored red"))
+    out = m.permit("trash", 0, 1.0)
+    assert out is not None and out.excepted and not out.induced
+    assert m.rules["trash"] == ()
+    assert m.decide("trash", 0, ["trash"])[0] and not m.decide("trash", 1, ["trash"])[0]
+    out = m.permit("trash", 1, 1.0)  # a blue one: learned from, the red exception is not
+    assert out is not None and not out.excepted
+    assert texts(m.rules["trash"]) == ["forbid trash if not isColored red"]
+
+
+def test_examples_under_an_allow_norm_change_neither_the_rules_nor_the_posterior() -> None:
+    """They are allowed under every rule set minus the allow norm: leaving them out is exact."""
+    colours = ["red", "blue", "green", "red", "blue", "red"]
+    objs = [ObjectSpec(f"o{i}", c, (0.1 * i, 0.0, 0.0)) for i, c in enumerate(colours)]
+    values = {1: 1.0, 2: 0.0, 4: 1.0}
+    with_red, without = mind(objs, "ours", ("a1",)), mind(objs, "ours", ("a1",))
+    for m in (with_red, without):
+        m.claim(1, "a1", 1.0)
+        m.instruct(parse_norm("allow trash if isColored red"))
+    for i in range(len(objs)):
+        if i in values:
+            with_red.permit("trash", i, values[i])
+            without.permit("trash", i, values[i])
+        elif colours[i] == "red":
+            with_red.permit("trash", i, float(i % 2 == 0))  # red examples, forbidden and allowed
+    assert with_red.rules["trash"] == without.rules["trash"]
+    a, b = with_red.rule_posterior("trash"), without.rule_posterior("trash")
+    assert a.sets == b.sets and np.allclose(a.probabilities, b.probabilities, atol=1e-12)
+
+
 def test_subtract_leaves_disjoint_rules_and_drops_contradictions() -> None:
     rules = [parse_rule("forbid trash if not isColored red"), parse_rule("forbid trash if ownedBy a1")]
     out = subtract(rules, parse_rule("forbid trash if isColored red"))
