@@ -1,5 +1,8 @@
 """``understand(utterance, ctx)``: normalise, try the grammar's rules in order, build the reply.
 
+A norm written in the robot's own rule language ("allow trash if isColored grey", as ``ownctl
+forbid|allow`` and ``rules list`` write it) is that norm, before any English reading.
+
 Rule order: statements (reprimands, claims, permissions, norms) before dialogue (questions,
 introductions, tasks, requests, small talk). The forms hardly overlap because every pattern must
 match the whole utterance; where they could, the order above decides, deterministically.
@@ -48,6 +51,7 @@ from ownctl.language.lexicon import (
 from ownctl.language.normalize import normalize
 from ownctl.language.reply import reply
 from ownctl.language.resolve import Resolver
+from ownctl.logic.rules import parse_norm
 
 #: Every grammar rule, in the order they are tried.
 RULES: tuple[GrammarRule, ...] = (*statements.GRAMMAR.rules, *dialogue.GRAMMAR.rules)
@@ -357,6 +361,20 @@ def _understand(utterance: str, ctx: Context) -> Understanding:
         raise whole from None
 
 
+def _formal_norm(utterance: str) -> Understanding | None:
+    """A norm in the robot's own rule language ("allow trash if isColored grey", as ``ownctl
+    forbid|allow`` and ``rules list`` write it), said as it is written; None if it is not one."""
+    words = utterance.strip().rstrip(".!").split()
+    if not words or words[0].lower() not in ("forbid", "allow"):
+        return None
+    try:
+        norm = parse_norm(" ".join([words[0].lower(), *words[1:]]))
+    except OwnctlError:
+        return None
+    instructions = (NormInstruction(norm),)
+    return Understanding("norm", instructions, reply("norm", instructions), "formal norm")
+
+
 def understand(utterance: str, ctx: Context) -> Understanding:
     """What ``utterance``, said in ``ctx``, means: intent, instructions in order, and the reply.
 
@@ -368,6 +386,9 @@ def understand(utterance: str, ctx: Context) -> Understanding:
     if len(utterance) > MAX_CHARS:
         raise TooLong(f"the utterance is {len(utterance)} characters long; I understand at most "
                       f"{MAX_CHARS} at once: say it in shorter parts")
+    formal = _formal_norm(utterance)
+    if formal is not None:
+        return formal
     try:
         return _understand(utterance, ctx)
     except OwnctlError as err:

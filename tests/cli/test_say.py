@@ -218,3 +218,16 @@ def test_whose_says_someone_owns_it_when_no_one_agent_is_likely_but_their_union_
     assert "probably someone does (p=0.64)" in mug and "nobody" not in mug  # 1 - 0.6 * 0.6
     pen = table_world.json("say", "Whose is the pen?")["reply"]
     assert "I think nobody owns pen (p=0.64)" in pen  # 0.8 * 0.8
+
+
+def test_a_norm_said_in_the_rule_language_is_that_norm(table_world: Ownctl) -> None:
+    out = table_world.json("say", "Allow trash if isColored red and not ownedBy xuan.")
+    assert out["intent"] == "norm"
+    assert out["instructions"] == ["allow trash if not ownedBy xuan and isColored red"]  # canonical
+    said = table_world.json("say", "forbid pickUp if ownedBy any and inArea desk")
+    assert said["instructions"] == ["forbid pickUp if ownedBy any and inArea desk"]
+    assert "forbid pickUp if ownedBy any and inArea desk" in _rules(table_world)
+    before = table_world.digest()
+    error = table_world("say", "forbid trash if ownedBy ghost", code=1).stderr
+    assert "unknown agent 'ghost'" in error and error.count("\n") == 1
+    assert table_world.digest() == before
