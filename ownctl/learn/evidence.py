@@ -20,6 +20,8 @@ from ownctl.logic.prob import atom_truth, enumerate_worlds
 from ownctl.logic.rules import ANY, Literal, Rule
 
 MAX_NAMED_AGENTS = 10
+#: truth values weighted at once by :meth:`Evidence.pair_prob` (a block of rows bounds its memory)
+PAIR_CELLS = 1 << 20
 
 
 @dataclass(frozen=True)
@@ -157,9 +159,16 @@ class Evidence:
         _, ni, weight, starts = self.pairs
         if not len(ni):
             return np.zeros((*truth.shape[:-1], self.n))
-        # sums of weights are never negative: capping them at 1 is the clip to [0, 1]
-        out: np.ndarray = np.minimum(np.add.reduceat(truth * weight, starts, axis=-1), 1.0)
-        return out
+        # sums of weights are never negative: capping them at 1 is the clip to [0, 1]. Rows are taken
+        # a block at a time, so the weighted copy stays small (many agents make many pairs)
+        lead = truth.shape[:-1]
+        flat = truth.reshape(-1, truth.shape[-1])
+        out: np.ndarray = np.empty((len(flat), self.n))
+        block = max(1, PAIR_CELLS // max(1, flat.shape[1]))
+        for lo in range(0, len(flat), block):
+            np.minimum(np.add.reduceat(flat[lo : lo + block] * weight, starts, axis=-1), 1.0,
+                       out=out[lo : lo + block])
+        return out.reshape(*lead, self.n)
 
     def prob(self, truth: np.ndarray) -> np.ndarray:
         """Exact probability per example of a truth table (..., W, n) -> (..., n)."""
