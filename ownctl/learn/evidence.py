@@ -73,8 +73,10 @@ class Evidence:
     def reordered(self, order: Sequence[int] | np.ndarray) -> Evidence:
         """The examples at the indices ``order`` (a permutation, or a subset), in that order, sharing
         the enumerated worlds."""
-        out = object.__new__(Evidence)
         idx = np.asarray(order, dtype=int)
+        if len(idx) == self.n and np.array_equal(idx, np.arange(self.n)):
+            return self  # the same examples in the same order (and its caches)
+        out = object.__new__(Evidence)
         out.frame = self.frame.take(idx)
         out.t = self.t[idx]
         w = self.worlds
