@@ -181,7 +181,8 @@ class GroundExamples:
         if len(self.asked) >= self.budget or not any(mind.perms.values()):
             return
         def unsure(i: int) -> bool:
-            return bool(np.any((mind.posterior_rows([i])[0] > 0.01) & (mind.posterior_rows([i])[0] < 0.99)))
+            row = mind.posterior_rows([i])[0]
+            return bool(np.any((row > 0.01) & (row < 0.99)))
         pick: int | None = None
         if not self.asked:
             examples = dict.fromkeys(mind.obj(n) for s in self.steps for n in mind.perms[s])

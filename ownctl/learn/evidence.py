@@ -181,16 +181,15 @@ class Evidence:
         """P(forbidden) per example under a rule set."""
         return self.prob(self.union(rules)) if rules else np.zeros(self.n)
 
-    def beyond(self, allows: Sequence[Rule]) -> np.ndarray:
-        """Indices of the examples on which no allow norm of ``allows`` surely holds.
+    def beyond(self, allows: Sequence[Rule]) -> tuple[Evidence, np.ndarray]:
+        """The examples on which no allow norm of ``allows`` surely holds, and their indices here.
 
         Where an allow norm surely holds, every rule set minus the allow norms says "allowed", so the
         example's likelihood is the same under every rule set: learning without it compares rule sets
         exactly as with it, and a permission that contradicts a stated allow norm (an exception,
         decided by the permission itself) is not generalised to other objects."""
-        if not allows or self.n == 0:
-            return np.arange(self.n)
-        return np.flatnonzero(self.q(allows) < 1.0 - 1e-12)
+        kept = np.flatnonzero(self.q(allows) < 1.0 - 1e-12) if allows and self.n else np.arange(self.n)
+        return self.reordered(kept), kept
 
     def soft_accuracy(self, rules: Sequence[Rule]) -> float:
         """Mean agreement between each permission and the rules' probability (1 with no examples)."""

@@ -256,14 +256,14 @@ def learn_permission(
     """
     accuracy = ev.soft_accuracy(rules)
     if cfg.learner == "ours":
-        kept = ev.beyond(allows)
+        examples, kept = ev.beyond(allows)
         at = np.flatnonzero(kept == new)
-        if len(kept) == 0:
-            return Outcome(tuple(rules), False, accuracy, excepted=True)
-        ind, trace = calibrated_inducer(action, ev.reordered(kept), vocab, cfg, given,
-                                        int(at[0]) if len(at) else None)
+        excepted = not len(at)
+        if examples.n == 0:
+            return Outcome(tuple(rules), False, accuracy, excepted=excepted)
+        ind, trace = calibrated_inducer(action, examples, vocab, cfg, given, None if excepted else int(at[0]))
         learned = tuple(ind.reinduce(given, allows, trace))
-        return Outcome(learned, learned != tuple(rules), accuracy, excepted=not len(at))
+        return Outcome(learned, learned != tuple(rules), accuracy, excepted=excepted)
     if accuracy >= cfg.accuracy_gate:
         return Outcome(tuple(rules), False, accuracy)
     ind = Inducer(action, ev, vocab, cfg)
@@ -296,8 +296,7 @@ def learn_norm(
     if norm.sign == "forbid":
         if ind.ours:
             said = ind.cover_rule(stated, norm.rule)
-            best, trace = calibrated_inducer(norm.rule.action, ev.reordered(ev.beyond(allows)), vocab, cfg,
-                                             said)
+            best, trace = calibrated_inducer(norm.rule.action, ev.beyond(allows)[0], vocab, cfg, said)
             current = best.reinduce(said, allows, trace)
             return Outcome(tuple(current), True, accuracy, tuple(specialising(said, current)))
         current = ind.cover_rule(list(rules), norm.rule)

@@ -296,7 +296,7 @@ def rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfi
     (:func:`ownctl.learn.induce.calibrated_inducer`), so that the posterior and the learned rules
     rest on the same model."""
     if cfg.learner == "ours":  # on the examples the learner learns from (Evidence.beyond)
-        ev = calibrated_inducer(action, ev.reordered(ev.beyond(allows)), vocab, cfg, tuple(given))[0].ev
+        ev = calibrated_inducer(action, ev.beyond(allows)[0], vocab, cfg, tuple(given))[0].ev
     atoms = vocab.atoms()
     model = model_for(atoms, cfg.max_conditions)
     learned = [r for r in rules if r not in set(given)]
