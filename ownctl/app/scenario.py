@@ -281,7 +281,7 @@ def play(
     on_step: Callable[[StepResult], None] | None = None,
 ) -> ScenarioReport:
     """Load ``world`` into ``ctx``'s store and play ``scenario`` on it (see the module docstring)."""
-    from ownctl.app.worldfile import store_world
+    from ownctl.app.worldfile import keep_name, store_world
 
     if render is not None and not physics:
         raise BadValue("--render needs --physics (a kinematic run has nothing to film)")
@@ -296,6 +296,7 @@ def play(
     ctx.interface, ctx.command = "scenario", f"scenario play {scenario.source}"
     with ctx.write({"op": "world.load", "file": scenario.source, "world": world.name}) as tx:
         store_world(tx, world, ctx.now)
+        keep_name(tx, world.name)
     start = _positions(ctx)
     runs = 0
     for step in scenario.steps:

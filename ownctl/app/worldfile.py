@@ -2,8 +2,10 @@
 
 Loading adds the file's agents (existing agents of the same name are reused), areas and objects
 (duplicates are errors), turns interaction ages into absolute times (``now - age``), and stores the
-ground truth (true owners, true norms) in its own tables. Export writes the same format back, ages
-measured at ``now``; ground truth comes from the truth tables, never from beliefs.
+ground truth (true owners, true norms) in its own tables. The first file with a ``name`` names the
+store's world (setting ``world.name``); a later file adds to that world and does not rename it.
+Export writes the same format back, the name included, ages measured at ``now``; ground truth
+comes from the truth tables, never from beliefs.
 """
 
 from __future__ import annotations
@@ -18,8 +20,12 @@ from ownctl.app.mindstore import Stored, spec_of
 from ownctl.app.mindstore import load as load_mind
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.humanize import plural
+from ownctl.store.repo import Tx
 from ownctl.world.model import Area, World
 from ownctl.world.spec import to_toml, world_from_dict, world_to_dict
+
+#: the setting that keeps the store's world's name (the ``name`` of the first world file loaded)
+WORLD_NAME = "world.name"
 
 
 def read_world(path: str, seed: int = 0) -> World:
@@ -63,6 +69,13 @@ def store_world(tx: Any, world: World, now: float, skip_existing_areas: bool = F
     return stored
 
 
+def keep_name(tx: Tx, name: str) -> None:
+    """Keep ``name`` as the store's world's name, so that export writes it back; a store whose world
+    is already named keeps its name, and an empty ``name`` names nothing."""
+    if name and not tx.meta.settings().get(WORLD_NAME):
+        tx.meta.set_setting(WORLD_NAME, name)
+
+
 @use_case
 def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
     """Add the world in ``path`` to the store, in one transaction."""
@@ -70,6 +83,7 @@ def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
     payload = {"op": "world.load", "file": str(path), "world": world.name, "seed": seed}
     with ctx.write(payload) as tx:
         ctx.remember(tx, store_world(tx, world, ctx.now))
+        keep_name(tx, world.name)
     counts = {"agents": len(world.agents), "areas": len(world.areas), "objects": len(world.objects)}
     listing = ", ".join(plural(n, k.removesuffix("s")) for k, n in counts.items())
     return Done(
@@ -78,9 +92,12 @@ def load(ctx: AppContext, path: str, seed: int = 0) -> Done:
     )
 
 
-def current_world(ctx: AppContext, name: str = "") -> World:
-    """The store's world with its ground truth, interaction ages measured at ``ctx.now``."""
+def current_world(ctx: AppContext, name: str | None = None) -> World:
+    """The store's world with its ground truth, interaction ages measured at ``ctx.now``; named
+    ``name``, else the name it was loaded with ("" when none)."""
     with ctx.read() as tx:
+        if name is None:
+            name = str(tx.meta.settings().get(WORLD_NAME) or "")
         agents = {a.id: a.name for a in tx.world.agents()}
         categories = tx.things.categories()
         touched = tx.touches.times()
@@ -102,8 +119,9 @@ def current_world(ctx: AppContext, name: str = "") -> World:
         )
 
 
-def export(ctx: AppContext, name: str = "") -> dict[str, Any]:
-    """The store's world as a world-file dict (see :func:`export_toml` for the text)."""
+def export(ctx: AppContext, name: str | None = None) -> dict[str, Any]:
+    """The store's world as a world-file dict (see :func:`export_toml` for the text), named ``name``,
+    else the name it was loaded with."""
     return world_to_dict(current_world(ctx, name))
 
 

@@ -56,12 +56,15 @@ def world_export(
     output: Annotated[
         Path | None, typer.Option("--output", "-o", metavar="FILE", help="Write to this file, not stdout.")
     ] = None,
-    name: Annotated[str, typer.Option(metavar="NAME", help="The world's name in the file.")] = "",
+    name: Annotated[
+        str | None, typer.Option(metavar="NAME", help="The world's name in the file (default: the name "
+                                 "the store's world was loaded with).")
+    ] = None,
     json_out: JsonOpt = False,
 ) -> None:
     """Print the store's world as TOML (or JSON with --json).
 
-    The world is its agents, areas, objects and ground truth, as world load reads it back.
+    The world is its name, agents, areas, objects and ground truth, as world load reads it back.
     """
     import json
 

@@ -5,10 +5,8 @@ from __future__ import annotations
 import json
 import tomllib
 from pathlib import Path
-from typing import TYPE_CHECKING
 
-if TYPE_CHECKING:
-    from tests.cli.conftest import Ownctl
+from tests.cli.conftest import Ownctl
 
 WORLD = """\
 name = "desk"
@@ -44,6 +42,26 @@ def test_load_then_export(ownctl: Ownctl, tmp_path: Path) -> None:
     out = tmp_path / "out.toml"
     ownctl("world", "export", "-o", str(out), "--name", "desk")
     assert tomllib.loads(out.read_text()) == exported
+
+
+def test_export_writes_back_the_name_the_world_was_loaded_with(ownctl: Ownctl, tmp_path: Path) -> None:
+    path = tmp_path / "desk.toml"
+    path.write_text(WORLD)
+    ownctl("world", "load", str(path))
+    exported = tomllib.loads(ownctl("world", "export").stdout)
+    assert exported["name"] == "desk"
+    assert json.loads(ownctl("world", "export", "--json").stdout)["name"] == "desk"
+    assert tomllib.loads(ownctl("world", "export", "--name", "study").stdout)["name"] == "study"
+    other = tmp_path / "other.toml"  # a later file adds to the named world, it does not rename it
+    other.write_text('name = "garage"\nagents = ["alexis"]\n[[objects]]\nname = "drill"\n')
+    ownctl("world", "load", str(other))
+    assert tomllib.loads(ownctl("world", "export").stdout)["name"] == "desk"
+    out = tmp_path / "out.toml"
+    ownctl("world", "export", "-o", str(out))
+    again = Ownctl(tmp_path / "again.db")
+    again("init")
+    assert again.json("world", "load", str(out))["world"] == "desk"
+    assert tomllib.loads(again("world", "export").stdout) == tomllib.loads(out.read_text())
 
 
 def test_generated_world(ownctl: Ownctl, tmp_path: Path) -> None:
