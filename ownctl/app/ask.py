@@ -4,7 +4,8 @@
 information for a task (:mod:`ownctl.mind.ask`; docs/asking.md). ``put`` stores the best one as
 pending for the speaker, in the store's settings (key ``ask.pending``: speaker -> question; ``*``
 when nobody is speaking yet), and makes its object the conversation's target; ``ownctl say`` then
-reads that speaker's next utterance as the answer (:mod:`ownctl.language.answers`).
+reads that speaker's next utterance as the answer (:mod:`ownctl.language.answers`). A best question
+that is not worth asking by ``ask.min_gain`` (the test ``run --ask`` applies) is not put.
 """
 
 from __future__ import annotations
@@ -49,13 +50,14 @@ def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: i
 
     if top < 1:
         raise BadValue(f"--top must be at least 1, got {top}")
-    _, _, temper, read, ahead = asking(tx.meta.settings())
+    min_gain, _, temper, read, ahead = asking(tx.meta.settings())
     mind = load(tx, now).mind
     steps, idx = task_scope(mind, task, objects)
     before = expected_mistakes(mind, steps, idx, temper, task_reading(mind, steps) if read else IDENTITY)
     ranked = best_questions(mind, steps, idx, top=top, temper=temper, read=read, ahead=ahead) if idx else []
     return {"task": task, "steps": list(steps), "objects": list(before.objects),
-            "expected_mistakes": before.total, "temper": temper, "read": read, "ahead": ahead,
+            "expected_mistakes": before.total, "min_gain": min_gain, "temper": temper, "read": read,
+            "ahead": ahead,
             "permissions": sum(len(mind.perms[s]) for s in steps),
             "per_object": [{"object": n, "decision": "forbidden" if d else "permitted",
                             "p_forbidden": float(p), "p_wrong": float(w)}
@@ -95,7 +97,11 @@ def clear_pending(tx: Tx, speaker: str | None) -> None:
 @use_case
 def put(ctx: AppContext, task: str = "trashAll", objects: Sequence[str] | None = None,
         speaker: str | None = None) -> Done:
-    """Put the best question to ``speaker`` (default: the current speaker): pending until answered."""
+    """Put the best question to ``speaker`` (default: the current speaker): pending until answered.
+    When its gain is not worth asking by ``ask.min_gain``, nothing is put (``"put": None``) and the
+    store is left as it was."""
+    from ownctl.mind.ask import worth_asking
+
     with ctx.read() as tx:
         ranked = _ranked(tx, ctx.now, task, objects, 1)
         who = speaker if speaker is not None else tx.meta.conversation().speaker
@@ -104,6 +110,10 @@ def put(ctx: AppContext, task: str = "trashAll", objects: Sequence[str] | None =
     if not ranked["questions"]:
         raise OwnctlError(f"there is nothing to ask about {task}: no object is left to decide")
     best = ranked["questions"][0]
+    if not worth_asking(best["gain"], ranked["min_gain"]):
+        return Done(f"no question is worth asking about {task}: the best ({best['text']}) would save "
+                    f"{best['gain']:.3f} expected mistakes, below ask.min_gain {ranked['min_gain']:g}; "
+                    "nothing was put", {**ranked, "put": None, "speaker": who})
     with ctx.write({"op": "ask.put", "question": best["text"], "speaker": who}, actor=who) as tx:
         table = pending_questions(tx)
         table[who or ANYONE] = {k: best[k] for k in ("kind", "object", "action", "rule", "text", "gain")}

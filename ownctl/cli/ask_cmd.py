@@ -26,7 +26,8 @@ def ask(
     ] = None,
     top: Annotated[int, typer.Option("--top", metavar="K", help="How many questions to list.")] = 3,
     put: Annotated[bool, typer.Option("--put", help="Put the best question to the speaker: ownctl say "
-                                      "then reads their next words as the answer.")] = False,
+                                      "then reads their next words as the answer. Nothing is put when "
+                                      "it would save less than ask.min_gain.")] = False,
     speaker: Annotated[
         str | None, typer.Option("--as", metavar="AGENT", help="With --put: whom to ask (default: the "
                                  "current speaker).")

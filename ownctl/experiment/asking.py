@@ -56,6 +56,7 @@ from ownctl.mind.ask import (
     check_ahead,
     check_temper,
     ownership_entropy,
+    worth_asking,
 )
 from ownctl.world.generator import paper_blocks_world
 from ownctl.world.model import World
@@ -162,7 +163,7 @@ class QuestionAsker:
             best = best_questions(mind, self.steps, remaining, top=1, questions=pool,
                                   taught=self.taught, temper=self.temper, read=self.read,
                                   ahead=self.ahead)
-            if not best or best[0].gain < self.min_gain:
+            if not best or not worth_asking(best[0].gain, self.min_gain):
                 return None
             return best[0].question, best[0].gain
         if self.strategy == "entropy":

@@ -701,6 +701,13 @@ def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str
     return scored[:top]
 
 
+def worth_asking(gain: float, min_gain: float) -> bool:
+    """Whether a question of expected gain ``gain`` is worth putting when a question must save at
+    least ``min_gain`` expected mistakes (setting ``ask.min_gain``): the one test both ``run --ask``
+    and ``ask --put`` apply (docs/asking.md, sections 4-5)."""
+    return gain >= min_gain
+
+
 def _ranked(mind: Mind, steps: Sequence[str], objs: Sequence[int | str], names: Sequence[str],
             pool: Sequence[Question], taught: bool, temper: float, read: bool, ahead: bool) -> list[Scored]:
     """Every question of ``pool`` scored (see :func:`best_questions`), best first; the value now is

@@ -88,6 +88,22 @@ def test_an_utterance_that_is_no_answer_leaves_the_question_pending(world: Ownct
     assert world.json("say", ANSWERS[put["kind"]], "--as", "xuan")["intent"] == "answer"
 
 
+def test_put_puts_nothing_when_no_question_is_worth_asking(world: Ownctl) -> None:
+    before = world.digest()
+    nothing = world("ask", "--put", "--as", "alexis", "--task", "trash", "--objects", "wallet")
+    assert nothing.stdout.strip().splitlines() == [
+        "no question is worth asking about trash: the best (May I find wallet?) would save 0.000 "
+        "expected mistakes, below ask.min_gain 0.05; nothing was put"]
+    data = world.json("ask", "--put", "--as", "alexis", "--task", "trash", "--objects", "wallet")
+    assert data["put"] is None and data["min_gain"] == 0.05 and data["questions"][0]["gain"] == 0.0
+    assert world.digest() == before
+    world("config", "set", "ask.min_gain", "1")  # the threshold is the setting's, as for run --ask
+    worth = world.json("ask", "--put", "--task", "trash", "--objects", "cup")
+    assert worth["put"] is None and 0.05 < worth["questions"][0]["gain"] < 1
+    world("config", "set", "ask.min_gain", "default")
+    assert world.json("ask", "--put", "--task", "trash", "--objects", "cup")["put"]["object"] == "cup"
+
+
 def test_run_asks_the_oracle_or_only_lists(ownctl: Ownctl, tmp_path: Path) -> None:
     path = tmp_path / "world.toml"
     path.write_text(WORLD, encoding="utf-8")
