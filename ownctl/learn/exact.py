@@ -364,9 +364,10 @@ def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[L
     """
     runs: list[Trace | None] = []
     hedged = uncertain(ev)
+    misfits = functools.cache(lambda: _overcovers(ev, runs[0].result if runs[0] else ()))  # once at most
     for k, weight in enumerate(ALLOW_WEIGHTS):
         run = None
-        if k and not wanted(weight, hedged, lambda: _overcovers(ev, runs[0].result if runs[0] else ())):
+        if k and not wanted(weight, hedged, misfits):
             runs.append(None)
             continue
         known = None
