@@ -115,6 +115,7 @@ def test_a_kept_mind_gives_what_fresh_loads_give(template: Path, tmp_path: Path,
     replay(str(tmp_path / "kept.db"), str(tmp_path / "fresh.db"), stream)
 
 
+@pytest.mark.slow
 def test_a_fixed_stream_with_a_second_writer(template: Path, tmp_path: Path) -> None:
     shutil.copyfile(template, tmp_path / "kept.db")
     shutil.copyfile(template, tmp_path / "fresh.db")

@@ -32,6 +32,7 @@ def world(tmp_path: Path, ownctl: Ownctl) -> Ownctl:
     return ownctl
 
 
+@pytest.mark.slow
 def test_ask_lists_questions_with_gains_and_writes_nothing(world: Ownctl) -> None:
     before = world.digest()
     data = world.json("ask", "--task", "trashAll", "--top", "2")
@@ -49,6 +50,7 @@ def test_ask_lists_questions_with_gains_and_writes_nothing(world: Ownctl) -> Non
     assert world.digest() == before
 
 
+@pytest.mark.slow
 def test_ask_says_when_its_gains_rest_on_the_prior_alone(tmp_path: Path, ownctl: Ownctl) -> None:
     path = tmp_path / "world.toml"
     path.write_text(WORLD, encoding="utf-8")
@@ -88,6 +90,7 @@ def test_an_utterance_that_is_no_answer_leaves_the_question_pending(world: Ownct
     assert world.json("say", ANSWERS[put["kind"]], "--as", "xuan")["intent"] == "answer"
 
 
+@pytest.mark.slow
 def test_put_puts_nothing_when_no_question_is_worth_asking(world: Ownctl) -> None:
     before = world.digest()
     nothing = world("ask", "--put", "--as", "alexis", "--task", "trash", "--objects", "wallet")
@@ -123,6 +126,7 @@ def test_run_with_the_oracle_answers_the_questions(ownctl: Ownctl) -> None:
     assert report["mistakes"] <= 4
 
 
+@pytest.mark.slow
 def test_ask_values_questions_at_the_configured_temper(world: Ownctl) -> None:
     exact = world.json("ask", "--task", "trashAll", "--top", "3")
     assert exact["temper"] == 0.5  # the task asker's default: one valuation for ask and run --ask
@@ -140,6 +144,7 @@ def test_ask_values_questions_at_the_configured_temper(world: Ownctl) -> None:
     assert world.json("ask", "--task", "trashAll", "--top", "3")["read"] is False
 
 
+@pytest.mark.slow
 def test_ask_looks_ahead_as_configured(world: Ownctl) -> None:
     assert world.json("config", "get")["ask.ahead"] == world.json("ask", "--top", "1")["ahead"]
     world("config", "set", "ask.ahead", "2")
@@ -153,6 +158,7 @@ def test_ask_looks_ahead_as_configured(world: Ownctl) -> None:
         (q["text"], round(q["gain"], 6)) for q in myopic["questions"]]
 
 
+@pytest.mark.slow
 def test_run_asks_only_the_configured_kinds(ownctl: Ownctl, tmp_path: Path) -> None:
     loaded(ownctl, tmp_path)
     ownctl("config", "set", "ask.min_gain", "0")

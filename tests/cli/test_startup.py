@@ -99,6 +99,7 @@ def test_check_imports_only_what_a_decision_needs(store: str) -> None:
     assert _heavy_after("--db", store, "check", "trash", "mug", heavy=heavy) == "ownctl.cli.query"
 
 
+@pytest.mark.slow
 def test_claim_imports_only_what_a_claim_needs(store: str) -> None:
     assert _heavy_after("--db", store, "claim", "mug", "xuan", heavy=(*NOT_FOR_DECISIONS, "rich")) == ""
     # a value other than the default goes through typer's own conversion, and nothing else changes

@@ -40,6 +40,7 @@ def test_json_document_has_the_design_shape() -> None:
         assert 0 <= c["accuracy"] <= 1 and set(c["ci95"]) == {"accuracy", "f1"}
 
 
+@pytest.mark.slow
 def test_task_selection_tables_and_files(tmp_path: Path) -> None:
     out_csv, out_png = tmp_path / "t3.csv", tmp_path / "t3.png"
     res = run("task", "--trials", "2", "--task", "trashAll", "--jobs", "2", "--csv", str(out_csv),
@@ -95,6 +96,7 @@ def test_malformed_world_file_is_a_user_error(tmp_path: Path) -> None:
         app_experiment.load_world(bad)
 
 
+@pytest.mark.slow
 def test_paper_world_file_equals_the_builtin_world() -> None:
     built = app_experiment.run("task", trials=2, seed=1)
     filed = app_experiment.run("task", trials=2, seed=1, world=PAPER)
@@ -103,6 +105,7 @@ def test_paper_world_file_equals_the_builtin_world() -> None:
         assert a.accuracy == b.accuracy and a.counts == b.counts
 
 
+@pytest.mark.slow
 def test_a_different_norm_set_runs_end_to_end() -> None:
     factory = app_experiment.load_world(DESK)
     assert not app_experiment.is_paper_world(factory)

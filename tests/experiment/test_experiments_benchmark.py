@@ -8,9 +8,12 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[2]
 
 
+@pytest.mark.slow
 def test_table_1_online_gives_the_figures_of_table_1() -> None:
     out = subprocess.run(
         [sys.executable, str(ROOT / "benchmarks" / "experiments.py"), "--only", "norms", "--only",

@@ -27,6 +27,7 @@ from ownctl.world.spec import world_from_dict, world_to_dict
 QUICK = range(0, 25)
 
 
+@pytest.mark.slow
 def test_a_family_is_a_pure_function_of_its_seed() -> None:
     assert norm_family(7) == norm_family(7)
     assert len({norm_family(s).norms for s in QUICK}) > 20

@@ -57,6 +57,7 @@ def test_table3_trial_reports_counts_and_both_rule_averages() -> None:
     assert res.counts["violations"] == 0 and res.counts["mistakes"] >= 1
 
 
+@pytest.mark.slow
 def test_results_do_not_depend_on_the_number_of_jobs() -> None:
     one = run_experiment("task", 3, 11, 1, paper_blocks_world, "ours")
     two = run_experiment("task", 3, 11, 2, paper_blocks_world, "ours")

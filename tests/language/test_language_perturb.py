@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 from language_cases import CTX, TABLE
@@ -26,6 +27,7 @@ def perturbed(draw: st.DrawFn) -> tuple[str, str]:
     return utterance, out
 
 
+@pytest.mark.slow
 @settings(max_examples=300, deadline=None)
 @given(perturbed())
 def test_perturbations_mean_the_same(case: tuple[str, str]) -> None:

@@ -118,6 +118,7 @@ def test_rule_probabilities_and_support_follow_the_evidence() -> None:
     assert (p[:3] > 0.9).all() and (p[3:] < 0.1).all()
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("seed", range(2))
 def test_p_forbidden_is_the_weighted_sum_over_rule_sets(seed: int) -> None:
     """The vectorised marginal equals summing each set's exact P(forbidden) one by one, on a frame

@@ -103,6 +103,7 @@ def test_text_is_invariant_under_permutation_and_duplication(sign, action, lits,
     assert parsed.text() == canonical
 
 
+@pytest.mark.slow
 @RT
 @given(signs, actions, literal_sets, st.lists(SPACE, min_size=1, max_size=6))
 def test_extra_whitespace_parses_to_the_same_norm(sign, action, lits, sep) -> None:

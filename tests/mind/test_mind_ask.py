@@ -161,6 +161,7 @@ def test_expected_mistakes_equal_brute_force(seed: int) -> None:
     assert list(exp.decisions) == [mind.decide("trash", i, STEPS)[0] for i in objects]
 
 
+@pytest.mark.slow
 def test_a_step_marginal_equals_the_posterior_predictive() -> None:
     mind = small_mind(5, allow=True)
     frame = mind.frame()
@@ -349,6 +350,7 @@ def test_candidates_include_the_object_about_to_be_acted_on() -> None:
         assert (Question("act", name, "trash", steps=open_steps) in pool) == (len(open_steps) > 1)
 
 
+@pytest.mark.slow
 def test_taught_permission_questions_count_the_decisions_up_to_their_object() -> None:
     mind = small_mind(2, n=4)
     objects = [3, 1, 0, 2]
@@ -418,6 +420,7 @@ def test_a_fork_is_independent_and_keeps_other_actions_posteriors() -> None:
     assert np.allclose(kept.probabilities, fresh.rule_posterior("trash").probabilities)
 
 
+@pytest.mark.slow
 def test_best_questions_are_ranked_and_ties_ordered() -> None:
     mind = small_mind(0)
     objects = list(range(len(mind.objects)))

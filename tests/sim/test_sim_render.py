@@ -23,6 +23,7 @@ def _red_pixels(img: np.ndarray) -> int:
     return int(np.sum((r > 150) & (g < 90) & (b < 90)))
 
 
+@pytest.mark.slow
 def test_png_shows_the_scene_with_its_coloured_blocks(tmp_path: Path) -> None:
     red = _render(PhysicsWorld([SimBlock("a", "red", (0.3, -0.3, 0.0))], []), tmp_path / "red.png")
     blue = _render(PhysicsWorld([SimBlock("a", "blue", (0.3, -0.3, 0.0))], []), tmp_path / "blue.png")
