@@ -13,16 +13,18 @@ from __future__ import annotations
 import tomllib
 from dataclasses import replace
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import Stored, spec_of
 from ownctl.app.mindstore import load as load_mind
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.humanize import plural
-from ownctl.store.repo import Tx
 from ownctl.world.model import Area, World
 from ownctl.world.spec import to_toml, world_from_dict, world_to_dict
+
+if TYPE_CHECKING:
+    from ownctl.store.repo import Tx
 
 #: the setting that keeps the store's world's name (the ``name`` of the first world file loaded)
 WORLD_NAME = "world.name"

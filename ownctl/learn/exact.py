@@ -19,7 +19,7 @@ from __future__ import annotations
 
 import functools
 import math
-from collections.abc import Callable, Sequence
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -324,7 +324,12 @@ class Partial:
 #: avoid covering allowed examples first, mildly (2) and strictly (16). The objective's greedy order
 #: can cover a disjunction with one over-general rule or, with uncertain ownership, with one rule
 #: that hedges over uncertain owners where a colour rule and an ownership rule say it better; a run
-#: that first covers the examples it can cover cleanly finds those. See :func:`wanted`.
+#: that first covers the examples it can cover cleanly finds those. Every run after the first is
+#: made when the first gets some example wrong with certainty (:func:`_overcovers`); one below
+#: :data:`STRICT` also whenever some example's ownership is uncertain, since no example is then
+#: wrong with certainty and a hedging first rule cannot be told that way. Measured on tuning norm
+#: families (``docs/learning.md``): the mild run finds a better rule set most often; the strict
+#: one made on every uncertain example set too gains little more for twice the time.
 ALLOW_WEIGHTS = (1.0, 2.0, 16.0)
 STRICT = 16.0  # from this allow weight on, a run is made only when the first run misfits with certainty
 
@@ -356,7 +361,7 @@ def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[L
              max_length: int, max_rules: int, earlier: Choice | None = None, new: int | None = None
              ) -> Choice:
     """The most probable rule set around the ``given`` rules found by the greedy runs of
-    :data:`ALLOW_WEIGHTS` that :func:`wanted` asks for, traced. ``ev`` should be in canonical order
+    :data:`ALLOW_WEIGHTS` that are needed (see there), traced. ``ev`` should be in canonical order
     (:func:`canonical_order`) for the result to depend on the set of examples only.
 
     ``earlier``: the result of this function on the same examples but example ``new``; each of its
@@ -364,12 +369,15 @@ def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[L
     """
     runs: list[Trace | None] = []
     hedged = uncertain(ev)
-    misfits = functools.cache(lambda: _overcovers(ev, runs[0].result if runs[0] else ()))  # once at most
+    misfit: bool | None = None  # whether the first run gets some example wrong with certainty, once asked
     for k, weight in enumerate(ALLOW_WEIGHTS):
         run = None
-        if k and not wanted(weight, hedged, misfits):
-            runs.append(None)
-            continue
+        if k and not (hedged and weight < STRICT):
+            if misfit is None:
+                misfit = _overcovers(ev, runs[0].result if runs[0] else ())
+            if not misfit:
+                runs.append(None)
+                continue
         known = None
         previous = earlier.runs[k] if earlier is not None else None
         if previous is not None and new is not None:
@@ -382,17 +390,6 @@ def reinduce(ev: Evidence, action: str, given: Sequence[Rule], atoms: Sequence[L
             run = reinduce_greedy(ev, action, given, atoms, model, max_length, max_rules, weight, known)
         runs.append(run)
     return Choice(tuple(runs), _choose(runs))
-
-
-def wanted(weight: float, hedged: bool, misfits: Callable[[], bool]) -> bool:
-    """Whether the greedy run of allow weight ``weight`` (after the first) is made: when the first
-    run gets some example wrong with certainty (``misfits``, asked only when needed), and, below
-    :data:`STRICT`, also when some example's ownership is uncertain (``hedged``), since no example
-    is then wrong with certainty and a hedging first rule cannot be told that way. Measured on
-    tuning norm families (``docs/learning.md``): the mild run is the one that finds a better rule
-    set most often; the strict one run on every uncertain example set too gains little more for
-    twice the time."""
-    return (hedged and weight < STRICT) or misfits()
 
 
 CERTAIN = 0.999
