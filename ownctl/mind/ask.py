@@ -701,11 +701,15 @@ def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str
     return scored[:top]
 
 
+SAVES_NOTHING = 1e-9  # expected mistakes: a gain this small is a tie with no question (ranking's tolerance)
+
+
 def worth_asking(gain: float, min_gain: float) -> bool:
     """Whether a question of expected gain ``gain`` is worth putting when a question must save at
     least ``min_gain`` expected mistakes (setting ``ask.min_gain``): the one test both ``run --ask``
-    and ``ask --put`` apply (docs/asking.md, sections 4-5)."""
-    return gain >= min_gain
+    and ``ask --put`` apply (docs/asking.md, sections 4-5). A question that saves nothing (gain
+    within :data:`SAVES_NOTHING` of 0) is never worth putting, even with ``ask.min_gain 0``."""
+    return gain > SAVES_NOTHING and gain >= min_gain
 
 
 def _ranked(mind: Mind, steps: Sequence[str], objs: Sequence[int | str], names: Sequence[str],

@@ -100,6 +100,10 @@ def test_put_puts_nothing_when_no_question_is_worth_asking(world: Ownctl) -> Non
     data = world.json("ask", "--put", "--as", "alexis", "--task", "trash", "--objects", "wallet")
     assert data["put"] is None and data["min_gain"] == 0.05 and data["questions"][0]["gain"] == 0.0
     assert world.digest() == before
+    world("config", "set", "ask.min_gain", "0")  # a question that saves nothing is never put
+    zero = world.digest()
+    assert world.json("ask", "--put", "--task", "trash", "--objects", "wallet")["put"] is None
+    assert world.digest() == zero
     world("config", "set", "ask.min_gain", "1")  # the threshold is the setting's, as for run --ask
     worth = world.json("ask", "--put", "--task", "trash", "--objects", "cup")
     assert worth["put"] is None and 0.05 < worth["questions"][0]["gain"] < 1
