@@ -55,6 +55,7 @@ class PredictConfig:
     intercept_scale: float = 1.0  # prior std (logits) of the intercept around logit(base_rate)
     min_claims: int = 1  # below this, the calibrated prior is used
     base_rate: float = 0.25  # prior ownership of an agent without claims (never 0.5)
+    share_recency: bool = True  # an agent no claim says owns anything borrows recency from the others
 
 
 @dataclass(frozen=True)

@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ownctl.app.context import AppContext, Done, use_case
-from ownctl.app.mindstore import changing
+from ownctl.app.mindstore import changing, refit_focus
 from ownctl.app.settings import probability
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
@@ -51,7 +51,7 @@ def add_claim(
     }
     with ctx.read() as tx:
         tx.things.object(obj), tx.world.agent(agent)  # unknown names are errors that list the known ones
-        focus = [a.name for a in tx.world.agents()] if exclusive else [agent]
+        focus = refit_focus(tx, obj, [a.name for a in tx.world.agents()] if exclusive else [agent])
     with changing(ctx, payload, actor=speaker, agents=focus) as (tx, mind):
         trust = probability("trust", mind.settings.trust)
         stored = mind.claim(obj, agent, p, negated=negated, exclusive=exclusive, speaker=speaker)

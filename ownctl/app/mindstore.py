@@ -515,6 +515,19 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     return out
 
 
+def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:
+    """The agents whose predictors a claim or touch about ``obj`` by ``agents`` may refit, for a
+    partial load (:func:`load`), or None (load every agent) when an agent's predictor borrows from
+    the others' claims or may start to (ownctl/ownership/predict.py, "What other agents' claims
+    teach"): while some agent has no claim that it owns an object other than ``obj``."""
+    if not to_config(tx.meta.settings()).predict.share_recency:
+        return list(agents)
+    besides = tx.things.object(obj).id
+    if all(tx.beliefs.claims_owning(a.id, besides) for a in tx.world.agents()):
+        return list(agents)
+    return None
+
+
 @contextmanager
 def changing(ctx: AppContext, payload: dict[str, Any], actor: str | None = None,
              only: Sequence[str] | None = None, permitted: bool = False,

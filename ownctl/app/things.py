@@ -12,7 +12,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from ownctl.app.context import AppContext, Done, use_case
-from ownctl.app.mindstore import changing
+from ownctl.app.mindstore import changing, refit_focus
 from ownctl.errors import BadValue
 from ownctl.humanize import iso
 from ownctl.logic.names import check_name
@@ -186,8 +186,9 @@ def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Don
     time = ctx.now if at is None else finite("--at", at)
     with ctx.read() as tx:
         tx.things.object(obj), tx.world.agent(agent)  # unknown names are errors listing the known ones
+        focus = refit_focus(tx, obj, [agent])
     payload = {"op": "object.touch", "object": obj, "agent": agent, "time": time}
-    with changing(ctx, payload, agents=[agent]) as (_, mind):
+    with changing(ctx, payload, agents=focus) as (_, mind):
         mind.touch(obj, agent, time)  # recency is a percept of prediction
     return Done(f"{agent} touched {obj} at {iso(time)}", {"object": obj, "agent": agent, "time": time})
 

@@ -55,8 +55,11 @@ def loo_scores(mind: Mind, agent: str) -> np.ndarray:
     out = np.empty(len(idx))
     for k in range(len(idx)):
         rest = np.arange(len(idx)) != k
-        model = KernelOwnershipModel(mind.settings.predict).fit(X[idx[rest]], claims[rest])
-        p = float(model.predict_proba(X[idx[k] : idx[k] + 1])[0])
+        offset = mind.borrowed_term(agent, claims[rest])  # as the Mind's own predictor borrows
+        model = KernelOwnershipModel(mind.settings.predict).fit(
+            X[idx[rest]], claims[rest], None if offset is None else offset[idx[rest]])
+        row = slice(idx[k], idx[k] + 1)
+        p = float(model.predict_proba(X[row], None if offset is None else offset[row])[0])
         out[k] = 1.0 - p if claims[k] >= 0.5 else p
     return out
 

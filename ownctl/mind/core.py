@@ -41,9 +41,15 @@ from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import Norm, Rule
 from ownctl.logic.vocab import ACTIONS
-from ownctl.ownership.features import agent_features, percept_features
+from ownctl.ownership.features import agent_features, percept_features, recency_feature
 from ownctl.ownership.infer import posterior
-from ownctl.ownership.predict import KernelOwnershipModel, calibrated_base_rate
+from ownctl.ownership.predict import (
+    KernelOwnershipModel,
+    SharedRecency,
+    borrows,
+    calibrated_base_rate,
+    fit_shared_recency,
+)
 from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
 
 if TYPE_CHECKING:  # the learner is imported when a Mind first learns, not to decide one action
@@ -250,6 +256,7 @@ class Mind:
         self._respecified: set[str] = set()  # objects whose percepts changed (not added or removed)
         self._reindex()
         self._stale: set[str] = set()  # agents whose predictions must be refitted before use
+        self._lending: dict[tuple[int, ...], SharedRecency | None] | None = None  # during refresh
         self._posterior: np.ndarray | None = None
         self._inferred: tuple[list[int], np.ndarray] | None = None
 
@@ -327,13 +334,19 @@ class Mind:
         """Refit the predictors made stale by claims, touches or percepts (predictions are a pure
         function of the claims and the percepts, so computing them when first needed changes no
         result)."""
-        for agent in sorted(self._stale):
-            if agent in self.agents:
-                self._predict(self.agents.index(agent))
+        self._lending = {}  # the lenders' recency fit, computed once for every borrower refitted here
+        try:
+            for agent in sorted(self._stale):
+                if agent in self.agents:
+                    self._predict(self.agents.index(agent))
+        finally:
+            self._lending = None
         self._stale.clear()
 
     def _stale_agents(self, agents: Iterable[str]) -> None:
         fresh = set(agents)
+        if fresh and self._refit is None:
+            fresh.update(self._borrowers())  # what they borrow may have changed
         self._edited.update(fresh)
         if fresh and self.switches.prediction:
             if not self.complete:
@@ -358,13 +371,64 @@ class Mind:
                            shared=seen.shared_features(self.vocab.colors, cfg))
         return X, ~np.isnan(self.claims[:, j])
 
+    def _borrowers(self) -> list[str]:
+        """The agents whose predictors borrow recency from the others' claims: none when sharing is
+        off or prediction is, else those no claim says own anything (:func:`borrows`)."""
+        if not (self.switches.prediction and self.settings.predict.share_recency):
+            return []
+        return [a for j, a in enumerate(self.agents) if borrows(self.claims[~np.isnan(self.claims[:, j]), j])]
+
+    def _recency(self, agent: str) -> np.ndarray:
+        """(n,) the agent's weighted standardised log-recency over every object (a predictor input)."""
+        times = self.percepts().touch_times(agent)
+        return recency_feature(np.maximum(0.0, self.now - times), self.settings.predict)[:, 0]
+
+    def borrowed_term(self, agent: str, own: np.ndarray) -> np.ndarray | None:
+        """(n,) the logit term the agent's predictor adds when its claims ``own`` borrow
+        recency from the other agents' claims (ownctl/ownership/predict.py, "What other agents'
+        claims teach"; docs/architecture.md, section 5); None when they do not borrow, when no
+        other agent's claim says it owns something, or when the term is 0 everywhere (to 1e-9)."""
+        if not self.settings.predict.share_recency or not borrows(own):
+            return None
+        if self._refit is not None:
+            raise RuntimeError(f"the predictor of {agent} borrows from every agent's claims; "
+                               "load the whole store")
+        shared = self._lent(agent)
+        term = None if shared is None else shared.term(self._recency(agent))
+        # an agent whose touches do not vary (none at all) has nothing to borrow: its term is 0 up to rounding
+        return term if term is not None and bool(np.any(np.abs(term) > 1e-9)) else None
+
+    def _lent(self, besides: str) -> SharedRecency | None:
+        """The recency fit of the claims of the *lenders*, the agents other than ``besides`` that
+        some claim says own something (:func:`fit_shared_recency`); kept during one refresh."""
+        lenders = []
+        for k, other in enumerate(self.agents):
+            own = self.claims[~np.isnan(self.claims[:, k]), k]
+            if other != besides and not borrows(own):
+                lenders.append(k)
+        key = tuple(lenders)
+        if self._lending is not None and key in self._lending:
+            return self._lending[key]
+        recency, claims = [], []
+        for k in lenders:
+            known = ~np.isnan(self.claims[:, k])
+            recency.append(self._recency(self.agents[k])[known])
+            claims.append(self.claims[known, k])
+        shared = fit_shared_recency(np.concatenate(recency), np.concatenate(claims),
+                                    self.settings.predict) if lenders else None
+        if self._lending is not None:
+            self._lending[key] = shared
+        return shared
+
     def _predict(self, j: int) -> None:
         if not self.switches.prediction:
             return
         cfg = self.settings.predict
         X, known = self.features(self.agents[j])
-        model = KernelOwnershipModel(cfg).fit(X[known], self.claims[known, j])
-        self.predicted[:, j] = model.predict_proba(X)
+        own = self.claims[known, j]
+        offset = self.borrowed_term(self.agents[j], own)
+        model = KernelOwnershipModel(cfg).fit(X[known], own, None if offset is None else offset[known])
+        self.predicted[:, j] = model.predict_proba(X, offset)
         self.prior_source[:, j] = model.source_
 
     def frame(self, own: np.ndarray | None = None) -> Frame:

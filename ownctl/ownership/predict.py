@@ -15,11 +15,24 @@ centred on the base rate's logit. That prior makes the model calibrated with few
 claims all on one side: far from every claim it predicts about the base rate, never exactly 0.5.
 With fewer than ``min_claims`` claims it is the calibrated prior itself.
 
+**What other agents' claims teach.** An agent that no claim says owns anything cannot learn from
+its own claims what its objects look like: they only say what it does not own. How recently an
+agent touched an object is read the same way for every agent, so such an agent *borrows* it from
+the agents some claim says own something: :func:`fit_shared_recency` fits one logistic regression
+of their claims on their log-recency (:class:`SharedRecency`), and the agent's model adds its
+recency term, given as an ``offset`` per row, to its own (kernel, linear part and intercept,
+which correct it). How often
+the agent owns things stays its own: the intercept keeps its prior on the base rate, and without
+claims the prediction is the base rate moved by the borrowed term alone (docs/architecture.md,
+section 5).
+
 Newton's method on these small problems (one row per claimed object) is exact and takes
 milliseconds, unlike a general-purpose solver.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -60,12 +73,15 @@ class KernelOwnershipModel:
         pseudo = 4.0
         return _off_half((float(np.sum(p)) + pseudo * self.cfg.base_rate) / (len(p) + pseudo))
 
-    def fit(self, X: np.ndarray, p: np.ndarray) -> KernelOwnershipModel:
-        """Fit on feature rows ``X`` (n, d) and soft targets ``p`` (n,) in [0, 1]; returns self."""
+    def fit(self, X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None) -> KernelOwnershipModel:
+        """Fit on feature rows ``X`` (n, d) and soft targets ``p`` (n,) in [0, 1]; returns self.
+        ``offset`` (n,): a borrowed logit term per row (:meth:`SharedRecency.term`) added to the
+        model's own; pass the same rule's offset to :meth:`predict_proba`."""
         X = np.asarray(X, dtype=float).reshape(len(p), -1) if len(p) else np.zeros((0, 0))
         p = np.clip(np.asarray(p, dtype=float).reshape(len(X)), 0.0, 1.0)
         self.base_ = self.prior_(p)
         self.n_claims_ = len(p)
+        self.offset_ = offset is not None
         self.trained_ = len(p) >= max(self.cfg.min_claims, 1)
         if not self.trained_:
             return self
@@ -81,36 +97,89 @@ class KernelOwnershipModel:
         mean = np.zeros(m)
         base = float(np.clip(cfg.base_rate, 1e-6, 1 - 1e-6))
         mean[-1] = np.log(base / (1.0 - base))
-        self.coef_ = _newton(design, p, penalty, mean)
+        shift = np.zeros(n) if offset is None else np.asarray(offset, dtype=float).reshape(n)
+        self.coef_ = _newton(design, p, penalty, mean, shift)
         self.support_ = X
         return self
 
-    def decision_function(self, X: np.ndarray) -> np.ndarray:
-        """The logit f(x) for each row of ``X`` (n,)."""
+    def decision_function(self, X: np.ndarray, offset: np.ndarray | None = None) -> np.ndarray:
+        """The logit f(x) for each row of ``X`` (n,), plus ``offset`` (n,) for a model fitted with one."""
         X = np.asarray(X, dtype=float)
         design = np.hstack([rbf_kernel(X, self.support_, self.cfg.gamma), X, np.ones((len(X), 1))])
-        out: np.ndarray = design @ self.coef_
+        out: np.ndarray = design @ self.coef_ + self._offset(offset, len(X))
         return out
 
-    def predict_proba(self, X: np.ndarray) -> np.ndarray:
-        """P(owned) for each row of ``X`` (n,), never exactly 0.5."""
+    def predict_proba(self, X: np.ndarray, offset: np.ndarray | None = None) -> np.ndarray:
+        """P(owned) for each row of ``X`` (n,), never exactly 0.5 (``offset`` as given to :meth:`fit`;
+        an untrained model fitted with one predicts its base rate moved by the offset)."""
         X = np.asarray(X, dtype=float)
         if not self.trained_:
-            return np.full(len(X), self.base_)
-        out = _sigmoid(self.decision_function(X))
+            if offset is None:
+                return np.full(len(X), self.base_)
+            out = _sigmoid(np.log(self.base_ / (1.0 - self.base_)) + self._offset(offset, len(X)))
+        else:
+            out = _sigmoid(self.decision_function(X, offset))
         return np.where(np.abs(out - 0.5) > 1e-6, out, 0.5 - 1e-6)
+
+    def _offset(self, offset: np.ndarray | None, n: int) -> np.ndarray:
+        if (offset is not None) != self.offset_:
+            raise ValueError("predict with an offset exactly when the model was fitted with one")
+        return np.zeros(n) if offset is None else np.asarray(offset, dtype=float).reshape(n)
 
     @property
     def source_(self) -> str:
-        """Where predictions come from: ``prediction`` (trained) or ``base-rate`` (calibrated prior)."""
-        return "prediction" if self.trained_ else "base-rate"
+        """Where predictions come from: ``prediction`` (trained, or borrowed from the other agents'
+        claims) or ``base-rate`` (calibrated prior)."""
+        return "prediction" if self.trained_ or self.offset_ else "base-rate"
 
 
-def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.ndarray) -> np.ndarray:
-    """Minimise soft cross-entropy + 0.5 (t - mean)' P (t - mean) by damped Newton steps."""
+@dataclass(frozen=True)
+class SharedRecency:
+    """What the other agents' claims teach about recency: P(owned) = sigmoid(intercept + slope * r)
+    for an object the agent touched at (weighted, standardised) log-recency ``r``. A borrower takes
+    the recency term (:meth:`term`); the intercept, how often those agents own things, stays theirs."""
+
+    slope: float
+    intercept: float
+
+    def term(self, recency: np.ndarray) -> np.ndarray:
+        """The borrowed logit term of each row's recency, ``slope * r``."""
+        out: np.ndarray = self.slope * np.asarray(recency, dtype=float)
+        return out
+
+
+def borrows(p: np.ndarray) -> bool:
+    """Whether an agent with claims ``p`` borrows recency from the others: no claim says it owns
+    anything (every claim below 1/2, or none)."""
+    return not bool((np.asarray(p, dtype=float) >= 0.5).any())
+
+
+def fit_shared_recency(recency: np.ndarray, p: np.ndarray,
+                       cfg: PredictConfig | None = None) -> SharedRecency | None:
+    """The logistic regression of claims ``p`` on their agents' recency ``recency`` (one entry per
+    claimed (object, agent) pair), with the per-agent model's priors on its linear part and
+    intercept; None when no claim says an agent owns something (then it teaches nothing of what
+    owning looks like)."""
+    cfg = cfg or PredictConfig()
+    r = np.asarray(recency, dtype=float).reshape(-1)
+    y = np.clip(np.asarray(p, dtype=float).reshape(len(r)), 0.0, 1.0)
+    if borrows(y):
+        return None
+    base = float(np.clip(cfg.base_rate, 1e-6, 1 - 1e-6))
+    design = np.stack([r, np.ones(len(r))], axis=1)
+    penalty = np.diag([1.0 / cfg.C, 1.0 / cfg.intercept_scale**2])
+    mean = np.array([0.0, np.log(base / (1.0 - base))])
+    slope, intercept = _newton(design, y, penalty, mean, np.zeros(len(r)))
+    return SharedRecency(float(slope), float(intercept))
+
+
+def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.ndarray,
+            offset: np.ndarray) -> np.ndarray:
+    """Minimise soft cross-entropy of sigmoid(design t + offset) + 0.5 (t - mean)' P (t - mean) by
+    damped Newton steps."""
 
     def objective(theta: np.ndarray) -> float:
-        f = design @ theta
+        f = design @ theta + offset
         nll = np.logaddexp(0.0, -f) * p + np.logaddexp(0.0, f) * (1.0 - p)
         diff = theta - mean
         return float(nll.sum() + 0.5 * diff @ penalty @ diff)
@@ -119,7 +188,7 @@ def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.nda
     current = objective(theta)
     ridge = 1e-9 * np.eye(len(theta))
     for _ in range(MAX_NEWTON):
-        s = _sigmoid(design @ theta)
+        s = _sigmoid(design @ theta + offset)
         grad = design.T @ (s - p) + penalty @ (theta - mean)
         hess = design.T @ (design * (s * (1.0 - s))[:, None]) + penalty + ridge
         step = np.linalg.lstsq(hess, grad, rcond=None)[0]

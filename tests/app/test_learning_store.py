@@ -113,6 +113,24 @@ def test_priors_are_written_in_bulk(ctx: AppContext, n: int) -> None:
     assert [k for t, k in calls if t == "priors"] == [1, 1], calls  # the old chunk out, the new one in
 
 
+def test_an_agent_no_claim_says_owns_anything_borrows_recency_and_then_stops(ctx: AppContext) -> None:
+    """docs/architecture.md, section 5: xuan's predictor follows alexis' claims while no claim says
+    xuan owns something; once one does, a claim about alexis rewrites alexis' priors alone."""
+    small_world(ctx, 8)
+    for i, agent in ((0, "alexis"), (1, "xuan"), (4, "alexis"), (5, "xuan")):
+        things.touch(ctx, f"o{i}", agent, at=NOW - 1)
+    ctx.now = NOW + 5
+    instruct.add_claim(ctx, "o0", "alexis")
+    instruct.add_claim(ctx, "o1", "alexis", negated=True)
+    got = beliefs(ctx)
+    assert got[("o5", "xuan")]["prior_source"] == "prediction"  # borrowed: xuan touched o5 recently
+    assert got[("o5", "xuan")]["prior"] > got[("o6", "xuan")]["prior"]
+    instruct.add_claim(ctx, "o1", "xuan")
+    calls = count_writes(ctx)
+    instruct.add_claim(ctx, "o4", "alexis")
+    assert [k for t, k in calls if t == "priors"] == [1, 1], calls  # alexis' chunk alone
+
+
 def test_exclusive_claim_repredicts_every_agent_it_touches(ctx: AppContext) -> None:
     small_world(ctx, 6)
     instruct.add_claim(ctx, "o0", "alexis", exclusive=True)

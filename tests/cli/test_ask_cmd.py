@@ -127,7 +127,7 @@ def test_run_with_the_oracle_answers_the_questions(ownctl: Ownctl) -> None:
     report = ownctl.json("run", "trashAll", "--kinematic", "--seed", "2", "--ask", "2")
     assert 1 <= len(report["questions"]) <= 2
     assert all(q["answer"] for q in report["questions"])
-    assert report["mistakes"] <= 4
+    assert report["violations"] == [] and 0 < report["mistakes"] < 20  # the oracle stops every violation
 
 
 @pytest.mark.slow
