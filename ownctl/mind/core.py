@@ -376,7 +376,13 @@ class Mind:
         off or prediction is, else those no claim says own anything (:func:`borrows`)."""
         if not (self.switches.prediction and self.settings.predict.share_recency):
             return []
-        return [a for j, a in enumerate(self.agents) if borrows(self.claims[~np.isnan(self.claims[:, j]), j])]
+        lending = self._owning()
+        return [a for k, a in enumerate(self.agents) if k not in lending]
+
+    def _owning(self) -> list[int]:
+        """The columns of the agents some claim says own something (the lenders, :func:`borrows`)."""
+        held = ~np.isnan(self.claims)
+        return [k for k in range(len(self.agents)) if not borrows(self.claims[held[:, k], k])]
 
     def _recency(self, agent: str) -> np.ndarray:
         """(n,) the agent's weighted standardised log-recency over every object (a predictor input)."""
@@ -401,11 +407,7 @@ class Mind:
     def _lent(self, besides: str) -> SharedRecency | None:
         """The recency fit of the claims of the *lenders*, the agents other than ``besides`` that
         some claim says own something (:func:`fit_shared_recency`); kept during one refresh."""
-        lenders = []
-        for k, other in enumerate(self.agents):
-            own = self.claims[~np.isnan(self.claims[:, k]), k]
-            if other != besides and not borrows(own):
-                lenders.append(k)
+        lenders = [k for k in self._owning() if self.agents[k] != besides]
         key = tuple(lenders)
         if self._lending is not None and key in self._lending:
             return self._lending[key]
