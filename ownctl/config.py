@@ -56,6 +56,7 @@ class PredictConfig:
     min_claims: int = 1  # below this, the calibrated prior is used
     base_rate: float = 0.25  # prior ownership of an agent without claims (never 0.5)
     share_recency: bool = True  # an agent no claim says owns anything borrows recency from the others
+    share_step: float = 0.25  # the borrowed recency slope is rounded to a multiple of this (logits)
 
 
 @dataclass(frozen=True)

@@ -32,6 +32,10 @@ from ownctl.logic.vocab import ACTIONS
 from ownctl.mind import SWITCHES, ClaimInfo, Given, Mind, RuleInfo, Switches
 from ownctl.world.model import Area, ObjectSpec
 
+#: The store key of :attr:`Mind.lent`, the borrowed slope the borrowers' stored priors use (an internal
+#: value, not a setting of ``ownctl config``).
+LENT = "predict.lent"
+
 if TYPE_CHECKING:
     from ownctl.app.context import AppContext
     from ownctl.store.repo import Tx
@@ -94,6 +98,7 @@ class _Base:
     perms: dict[str, dict[str, Given]]
     rules: dict[str, list[tuple[str, str, Any]]]
     switches: dict[str, bool]
+    lent: float | None  # the slope the borrowers' stored priors use (Mind.lent)
     layout: int  # the Mind's layout when this was taken (same layout: same objects and agents)
 
 
@@ -151,7 +156,7 @@ class Stored:
             row=dict(mind.index), claims=mind.claims.copy(), claim_info=dict(mind.claim_info),
             prior=mind.predicted.copy(), source=mind.prior_source.copy(), posterior=post,
             perms={a: dict(g) for a, g in mind.perms.items()}, rules=_rules_state(mind),
-            switches=_switch_values(mind), layout=mind.layout,
+            switches=_switch_values(mind), lent=mind.lent, layout=mind.layout,
         )
 
     def _follow(self, edited: frozenset[str], respecified: frozenset[str],
@@ -170,6 +175,7 @@ class Stored:
         base.perms = {a: dict(g) for a, g in mind.perms.items()}
         base.rules = _rules_state(mind)
         base.switches = _switch_values(mind)
+        base.lent = mind.lent
         base.areas = tuple(mind.areas)
 
     # -- saving ---------------------------------------------------------------------------------
@@ -197,6 +203,8 @@ class Stored:
         for key, value in _switch_values(mind).items():
             if value != base.switches[key]:
                 tx.meta.set_setting(key, value or None)
+        if mind.lent != base.lent:
+            tx.meta.set_setting(LENT, mind.lent)
         if same:
             self._follow(edited, respecified, post)
         else:
@@ -455,6 +463,8 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
                 [Area(a.name, (a.x0, a.y0, a.x1, a.y1)) for a in tx.world.areas()], to_config(stored),
                 switches_of(stored), now=now, touch_times=True, complete=only is None, vocabulary=vocabulary,
                 refit=None if focus is None else [names[a] for a in focus])
+    lent = stored.get(LENT)
+    mind.lent = None if lent is None else float(lent)
     index = {r.id: i for i, r in enumerate(rows)}
     column = {a.id: j for j, a in enumerate(known)}
     stored_post = np.full(mind.claims.shape, np.nan)
@@ -523,7 +533,8 @@ def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:
     if not to_config(tx.meta.settings()).predict.share_recency:
         return list(agents)
     besides = tx.things.object(obj).id
-    if all(tx.beliefs.claims_owning(a.id, besides) for a in tx.world.agents()):
+    owning = tx.beliefs.agents_owning(besides)
+    if all(a.id in owning for a in tx.world.agents()):
         return list(agents)
     return None
 

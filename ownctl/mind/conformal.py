@@ -55,7 +55,7 @@ def loo_scores(mind: Mind, agent: str) -> np.ndarray:
     out = np.empty(len(idx))
     for k in range(len(idx)):
         rest = np.arange(len(idx)) != k
-        offset = mind.borrowed_term(agent, claims[rest])  # as the Mind's own predictor borrows
+        offset = mind.borrowed_term(agent, claims[rest], X[:, -1])  # as the Mind's own predictor borrows
         model = KernelOwnershipModel(mind.settings.predict).fit(
             X[idx[rest]], claims[rest], None if offset is None else offset[idx[rest]])
         row = slice(idx[k], idx[k] + 1)

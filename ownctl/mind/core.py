@@ -49,6 +49,7 @@ from ownctl.ownership.predict import (
     borrows,
     calibrated_base_rate,
     fit_shared_recency,
+    owns_some,
 )
 from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
 
@@ -257,6 +258,9 @@ class Mind:
         self._reindex()
         self._stale: set[str] = set()  # agents whose predictions must be refitted before use
         self._lending: dict[tuple[int, ...], SharedRecency | None] | None = None  # during refresh
+        self._lenders: list[int] | None = None  # the lenders' columns, during refresh
+        # the borrowed slope every borrower's predictions use (None: nobody borrows); see _follow_lenders
+        self.lent: float | None = None
         self._posterior: np.ndarray | None = None
         self._inferred: tuple[list[int], np.ndarray] | None = None
 
@@ -335,18 +339,36 @@ class Mind:
         function of the claims and the percepts, so computing them when first needed changes no
         result)."""
         self._lending = {}  # the lenders' recency fit, computed once for every borrower refitted here
+        self._lenders = None
         try:
+            if self._stale:
+                self._follow_lenders()
             for agent in sorted(self._stale):
                 if agent in self.agents:
                     self._predict(self.agents.index(agent))
         finally:
             self._lending = None
+            self._lenders = None
         self._stale.clear()
+
+    def _follow_lenders(self) -> None:
+        """When something changed, whether the borrowers' predictions must follow the lenders: the
+        slope the lenders' claims teach (rounded, :func:`ownctl.ownership.predict.rounded`) is
+        computed again, and when it is not the one the borrowers use (:attr:`lent`) every borrower
+        is refitted. A partial Mind refits only agents that do not borrow
+        (:func:`ownctl.app.mindstore.refit_focus`) and leaves :attr:`lent` as it is."""
+        if self._refit is not None or not self.complete:
+            return
+        borrowers = self._borrowers()
+        shared = self._lent(None) if borrowers else None
+        current = None if shared is None else shared.slope
+        if borrowers and current != self.lent:
+            self._stale.update(borrowers)
+            self._edited.update(borrowers)
+        self.lent = current
 
     def _stale_agents(self, agents: Iterable[str]) -> None:
         fresh = set(agents)
-        if fresh and self._refit is None:
-            fresh.update(self._borrowers())  # what they borrow may have changed
         self._edited.update(fresh)
         if fresh and self.switches.prediction:
             if not self.complete:
@@ -361,7 +383,7 @@ class Mind:
 
     def features(self, agent: str) -> tuple[np.ndarray, np.ndarray]:
         """The agent's predictor inputs: feature rows of every object and which objects carry a
-        claim (docs/architecture.md, section 5)."""
+        claim (docs/architecture.md, section 5); the last column is the recency feature."""
         j = self._column(agent)
         seen = self.percepts()
         times = seen.touch_times(agent)
@@ -380,31 +402,40 @@ class Mind:
         return [a for k, a in enumerate(self.agents) if k not in lending]
 
     def _owning(self) -> list[int]:
-        """The columns of the agents some claim says own something (the lenders, :func:`borrows`)."""
-        held = ~np.isnan(self.claims)
-        return [k for k in range(len(self.agents)) if not borrows(self.claims[held[:, k], k])]
+        """The columns of the agents some claim says own something (the lenders, :func:`borrows`);
+        kept during one refresh."""
+        if self._lenders is not None:
+            return self._lenders
+        owning: list[int] = np.flatnonzero(owns_some(self.claims)).tolist()
+        if self._lending is not None:
+            self._lenders = owning
+        return owning
 
-    def _recency(self, agent: str) -> np.ndarray:
-        """(n,) the agent's weighted standardised log-recency over every object (a predictor input)."""
+    def _recency(self, agent: str, rows: np.ndarray | None = None) -> np.ndarray:
+        """(n,) the agent's weighted standardised log-recency over every object (a predictor input),
+        or (len(rows),) at ``rows`` only."""
         times = self.percepts().touch_times(agent)
-        return recency_feature(np.maximum(0.0, self.now - times), self.settings.predict)[:, 0]
+        return recency_feature(np.maximum(0.0, self.now - times), self.settings.predict, rows)[:, 0]
 
-    def borrowed_term(self, agent: str, own: np.ndarray) -> np.ndarray | None:
+    def borrowed_term(self, agent: str, own: np.ndarray,
+                      recency: np.ndarray | None = None) -> np.ndarray | None:
         """(n,) the logit term the agent's predictor adds when its claims ``own`` borrow
         recency from the other agents' claims (ownctl/ownership/predict.py, "What other agents'
         claims teach"; docs/architecture.md, section 5); None when they do not borrow, when no
-        other agent's claim says it owns something, or when the term is 0 everywhere (to 1e-9)."""
+        other agent's claim says it owns something, or when the term is 0 everywhere (to 1e-9).
+        ``recency``: the agent's recency feature (the last column of :meth:`features`), when the
+        caller has it."""
         if not self.settings.predict.share_recency or not borrows(own):
             return None
         if self._refit is not None:
             raise RuntimeError(f"the predictor of {agent} borrows from every agent's claims; "
                                "load the whole store")
         shared = self._lent(agent)
-        term = None if shared is None else shared.term(self._recency(agent))
+        term = None if shared is None else shared.term(self._recency(agent) if recency is None else recency)
         # an agent whose touches do not vary (none at all) has nothing to borrow: its term is 0 up to rounding
         return term if term is not None and bool(np.any(np.abs(term) > 1e-9)) else None
 
-    def _lent(self, besides: str) -> SharedRecency | None:
+    def _lent(self, besides: str | None) -> SharedRecency | None:
         """The recency fit of the claims of the *lenders*, the agents other than ``besides`` that
         some claim says own something (:func:`fit_shared_recency`); kept during one refresh."""
         lenders = [k for k in self._owning() if self.agents[k] != besides]
@@ -414,7 +445,7 @@ class Mind:
         recency, claims = [], []
         for k in lenders:
             known = ~np.isnan(self.claims[:, k])
-            recency.append(self._recency(self.agents[k])[known])
+            recency.append(self._recency(self.agents[k], np.flatnonzero(known)))
             claims.append(self.claims[known, k])
         shared = fit_shared_recency(np.concatenate(recency), np.concatenate(claims),
                                     self.settings.predict) if lenders else None
@@ -428,7 +459,7 @@ class Mind:
         cfg = self.settings.predict
         X, known = self.features(self.agents[j])
         own = self.claims[known, j]
-        offset = self.borrowed_term(self.agents[j], own)
+        offset = self.borrowed_term(self.agents[j], own, X[:, -1])
         model = KernelOwnershipModel(cfg).fit(X[known], own, None if offset is None else offset[known])
         self.predicted[:, j] = model.predict_proba(X, offset)
         self.prior_source[:, j] = model.source_

@@ -46,6 +46,12 @@ def _sigmoid(z: np.ndarray) -> np.ndarray:
     return 0.5 * (1.0 + np.tanh(0.5 * z))
 
 
+def _logit(p: float) -> float:
+    """log(p / (1 - p)) of a probability kept inside (1e-6, 1 - 1e-6)."""
+    q = float(np.clip(p, 1e-6, 1 - 1e-6))
+    return float(np.log(q / (1.0 - q)))
+
+
 def rbf_kernel(A: np.ndarray, B: np.ndarray, gamma: float) -> np.ndarray:
     """exp(-gamma |a - b|^2) for every pair of rows (len(A), len(B))."""
     d2 = ((A[:, None, :] - B[None, :, :]) ** 2).sum(axis=-1)
@@ -95,8 +101,7 @@ class KernelOwnershipModel:
         penalty[n : n + d, n : n + d] = np.eye(d) / cfg.C
         penalty[-1, -1] = 1.0 / cfg.intercept_scale**2
         mean = np.zeros(m)
-        base = float(np.clip(cfg.base_rate, 1e-6, 1 - 1e-6))
-        mean[-1] = np.log(base / (1.0 - base))
+        mean[-1] = _logit(cfg.base_rate)
         shift = np.zeros(n) if offset is None else np.asarray(offset, dtype=float).reshape(n)
         self.coef_ = _newton(design, p, penalty, mean, shift)
         self.support_ = X
@@ -116,7 +121,7 @@ class KernelOwnershipModel:
         if not self.trained_:
             if offset is None:
                 return np.full(len(X), self.base_)
-            out = _sigmoid(np.log(self.base_ / (1.0 - self.base_)) + self._offset(offset, len(X)))
+            out = _sigmoid(_logit(self.base_) + self._offset(offset, len(X)))
         else:
             out = _sigmoid(self.decision_function(X, offset))
         return np.where(np.abs(out - 0.5) > 1e-6, out, 0.5 - 1e-6)
@@ -151,26 +156,41 @@ class SharedRecency:
 def borrows(p: np.ndarray) -> bool:
     """Whether an agent with claims ``p`` borrows recency from the others: no claim says it owns
     anything (every claim below 1/2, or none)."""
-    return not bool((np.asarray(p, dtype=float) >= 0.5).any())
+    return not bool(owns_some(np.reshape(np.asarray(p, dtype=float), (-1, 1)))[0])
+
+
+def owns_some(claims: np.ndarray) -> np.ndarray:
+    """(m,) for claims (n, m) with NaN where none: whether some claim of each column says its agent
+    owns something (the lenders; the others borrow, :func:`borrows`)."""
+    with np.errstate(invalid="ignore"):  # NaN (no claim) compares False
+        out = np.asarray(np.asarray(claims, dtype=float) >= 0.5).any(axis=0)
+    return np.asarray(out, dtype=bool)
 
 
 def fit_shared_recency(recency: np.ndarray, p: np.ndarray,
                        cfg: PredictConfig | None = None) -> SharedRecency | None:
     """The logistic regression of claims ``p`` on their agents' recency ``recency`` (one entry per
     claimed (object, agent) pair), with the per-agent model's priors on its linear part and
-    intercept; None when no claim says an agent owns something (then it teaches nothing of what
-    owning looks like)."""
+    intercept, the slope rounded to a multiple of ``cfg.share_step`` (:func:`rounded`); None when
+    no claim says an agent owns something (then it teaches nothing of what owning looks like)."""
     cfg = cfg or PredictConfig()
     r = np.asarray(recency, dtype=float).reshape(-1)
     y = np.clip(np.asarray(p, dtype=float).reshape(len(r)), 0.0, 1.0)
     if borrows(y):
         return None
-    base = float(np.clip(cfg.base_rate, 1e-6, 1 - 1e-6))
     design = np.stack([r, np.ones(len(r))], axis=1)
     penalty = np.diag([1.0 / cfg.C, 1.0 / cfg.intercept_scale**2])
-    mean = np.array([0.0, np.log(base / (1.0 - base))])
+    mean = np.array([0.0, _logit(cfg.base_rate)])
     slope, intercept = _newton(design, y, penalty, mean, np.zeros(len(r)))
-    return SharedRecency(float(slope), float(intercept))
+    return SharedRecency(rounded(float(slope), cfg.share_step), float(intercept))
+
+
+def rounded(slope: float, step: float) -> float:
+    """``slope`` to the nearest multiple of ``step`` (``step`` 0: as it is). A borrower's
+    predictions then move only when the lenders' claims move the slope by a visible amount, so
+    a claim in a large store rewrites the borrowers' priors only now and then (docs/architecture.md,
+    section 5)."""
+    return float(np.round(slope / step) * step) if step > 0 else slope
 
 
 def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.ndarray,

@@ -518,14 +518,13 @@ class Beliefs(_Part):
             out.extend(self._rows(query.where(ownership.c.object_id.in_(ids[start : start + CHUNK]))))
         return out
 
-    def claims_owning(self, agent_id: int, besides: int | None = None) -> bool:
-        """Whether some claim says the agent owns an object (``claim_p`` at least 1/2), not counting
-        the claim about object ``besides`` (one indexed lookup)."""
-        query = select(ownership.c.object_id).where(ownership.c.agent_id == agent_id,
-                                                    ownership.c.claim_p >= 0.5)
+    def agents_owning(self, besides: int | None = None) -> set[int]:
+        """The ids of the agents some claim says own an object (``claim_p`` at least 1/2), not
+        counting the claims about object ``besides`` (one query over the claims)."""
+        query = select(ownership.c.agent_id).where(ownership.c.claim_p >= 0.5).distinct()
         if besides is not None:
             query = query.where(ownership.c.object_id != besides)
-        return self._row(query.limit(1)) is not None
+        return {int(row[0]) for row in self._rows(query)}
 
     def priors(self, object_ids: Sequence[int], agent_ids: Sequence[int]) -> PriorTable:
         """The priors of ``object_ids`` x ``agent_ids``, read chunk by chunk (``ownctl/store/packed.py``)."""

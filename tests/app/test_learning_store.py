@@ -23,7 +23,9 @@ from sqlalchemy import event
 from ownctl.app import admin, decide, instruct, query, things
 from ownctl.app.beliefs import decision_belief, induction_belief
 from ownctl.app.context import AppContext
+from ownctl.app.mindstore import LENT, load
 from ownctl.app.worldfile import store_world
+from ownctl.config import PredictConfig
 from ownctl.errors import OwnctlError
 from ownctl.experiment.truth import true_rules
 from ownctl.learn import induce
@@ -129,6 +131,25 @@ def test_an_agent_no_claim_says_owns_anything_borrows_recency_and_then_stops(ctx
     calls = count_writes(ctx)
     instruct.add_claim(ctx, "o4", "alexis")
     assert [k for t, k in calls if t == "priors"] == [1, 1], calls  # alexis' chunk alone
+
+
+def test_the_slope_the_borrowers_use_is_kept_in_the_store(ctx: AppContext) -> None:
+    """docs/architecture.md, section 5: the store holds the rounded slope the borrowers' priors use,
+    a Mind loaded from it uses that slope, and once nobody borrows it is gone."""
+    small_world(ctx, 8)
+    for i, agent in ((0, "alexis"), (1, "xuan"), (4, "alexis"), (5, "xuan")):
+        things.touch(ctx, f"o{i}", agent, at=NOW - 1)
+    ctx.now = NOW + 5
+    instruct.add_claim(ctx, "o0", "alexis")
+    with ctx.read() as tx:
+        lent = tx.meta.settings().get(LENT)
+        loaded = load(tx, ctx.now).mind
+    step = PredictConfig().share_step
+    assert lent is not None and lent < 0 and lent / step == round(lent / step)
+    assert loaded.lent == lent
+    instruct.add_claim(ctx, "o1", "xuan")  # xuan owns something claimed: nobody borrows
+    with ctx.read() as tx:
+        assert LENT not in tx.meta.settings()
 
 
 def test_exclusive_claim_repredicts_every_agent_it_touches(ctx: AppContext) -> None:

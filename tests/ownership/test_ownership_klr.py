@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from ownctl.config import PredictConfig
-from ownctl.ownership.features import agent_features
+from ownctl.ownership.features import NEVER_AGE, RECENCY_SAMPLE, agent_features, recency_feature
 from ownctl.ownership.predict import KernelOwnershipModel
 from ownctl.world.generator import paper_blocks_world
 from ownctl.world.model import World, positions
@@ -141,3 +141,21 @@ def test_without_recency_position_still_carries_ownership() -> None:
                   tuple(type(o)(o.name, o.color, o.position, o.categories, {}) for o in world.objects),
                   world.areas, world.norms, world.owners)
     assert holdout_accuracy(blind, rng, recency_only=False) >= 0.8
+
+
+@pytest.mark.parametrize("n", [1, 2, 7, RECENCY_SAMPLE, RECENCY_SAMPLE + 1, 3 * RECENCY_SAMPLE + 5])
+def test_recency_is_standardised_over_every_object_or_a_regular_sample(n: int) -> None:
+    """Up to RECENCY_SAMPLE objects the mean and spread are every object's; beyond, every k-th
+    object's, k = ceil(n / RECENCY_SAMPLE); the rows asked for are those of the whole."""
+    rng = np.random.default_rng(n)
+    ages = np.where(rng.random(n) < 0.4, rng.exponential(50.0, n), np.nan)
+    cfg = PredictConfig()
+    logs = np.log1p(np.where(np.isnan(ages), NEVER_AGE, ages))
+    sample = logs[:: -(-n // RECENCY_SAMPLE)]
+    spread = np.sqrt(((sample - sample.mean()) ** 2).mean()) if n > 1 else 1.0
+    spread = spread if spread > 1e-6 else 1.0
+    want = cfg.recency_weight * (logs - sample.mean()) / spread
+    got = recency_feature(ages, cfg)[:, 0]
+    assert np.allclose(got, want, atol=1e-12)
+    rows = np.arange(0, n, 3)
+    assert np.array_equal(recency_feature(ages, cfg, rows)[:, 0], got[rows])
