@@ -145,16 +145,28 @@ class Evidence:
         cache = self.__dict__.setdefault("_pair_rows", {})
         got = cache.get(lits)
         if got is None:
-            wi, ni, _, _ = self.pairs
-            rows = []
-            for k in range(0, len(lits), 2):
-                atom = atom_truth(lits[k], self.frame, self.worlds)
-                row = (atom[0, ni] if atom.shape[0] == 1 else atom[wi, 0] if atom.shape[1] == 1
-                       else atom[wi, ni])
-                rows += [row, ~row]
-            got = cache[lits] = np.array(rows, dtype=bool).reshape(len(lits), len(wi))
+            got = cache[lits] = self._pair_table([atom_truth(lits[k], self.frame, self.worlds)
+                                                  for k in range(0, len(lits), 2)])
         out: np.ndarray = got
         return out
+
+    def _pair_table(self, atoms: Sequence[np.ndarray]) -> np.ndarray:
+        """(2 len(atoms), pairs): each atom's truth at each pair of :attr:`pairs`, then its negation.
+        Atoms of the objects alone ((1, n): percepts) are gathered together by example, atoms of the
+        worlds alone ((W, 1): ownership) together by world, any other one by its own pairs."""
+        wi, ni, _, _ = self.pairs
+        width = len(self.worlds.bits)
+        table = np.empty((2 * len(atoms), len(wi)), dtype=bool)
+        crisp = [k for k, a in enumerate(atoms) if a.shape == (1, self.n)]
+        owned = [k for k, a in enumerate(atoms) if a.shape == (width, 1) and k not in crisp]
+        if crisp:
+            table[2 * np.asarray(crisp)] = np.concatenate([atoms[k] for k in crisp])[:, ni]
+        if owned:
+            table[2 * np.asarray(owned)] = np.concatenate([atoms[k] for k in owned], axis=1)[wi].T
+        for k in sorted(set(range(len(atoms))) - set(crisp) - set(owned)):
+            table[2 * k] = np.broadcast_to(atoms[k], (width, self.n))[wi, ni]
+        table[1::2] = ~table[0::2]
+        return table
 
     def pair_prob(self, truth: np.ndarray) -> np.ndarray:
         """Exact probability per example of a truth table over :attr:`pairs`, (..., P) -> (..., n)."""

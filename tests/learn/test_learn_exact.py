@@ -17,7 +17,8 @@ from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import learn_permission
 from ownctl.learn.model import model_for, rule_counts
 from ownctl.logic.frame import Frame
-from ownctl.logic.rules import Rule
+from ownctl.logic.prob import atom_truth
+from ownctl.logic.rules import Literal, Rule
 from ownctl.mind import Mind, Switches
 from ownctl.world.model import Area, ObjectSpec
 
@@ -239,3 +240,19 @@ def test_no_longer_rule_than_the_examples_need() -> None:
     ev = evidence_of(rows)
     out = learn_permission("trash", (), (), ev, 1, VOCAB, LearnConfig())
     assert [r.text() for r in out.rules] == ["forbid trash if isColored red"]
+
+
+@given(examples)
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+def test_pair_literals_is_each_literals_truth_at_each_pair(rows) -> None:
+    """The gathered table equals the truth of each atom (any shape) read at each (world, example)
+    pair of positive weight, each row followed by its negation."""
+    ev = evidence_of(rows)
+    atoms = [*VOCAB.atoms(), Literal("ownedBy", "a3")]  # a3: an agent the worlds do not name
+    lits = tuple(x for a in atoms for x in (a, a.negate()))
+    got = ev.pair_literals(lits)
+    wi, ni, _, _ = ev.pairs
+    width = len(ev.worlds.bits)
+    for k in range(0, len(lits), 2):
+        want = np.broadcast_to(atom_truth(lits[k], ev.frame, ev.worlds), (width, ev.n))[wi, ni]
+        assert np.array_equal(got[k], want) and np.array_equal(got[k + 1], ~want)
