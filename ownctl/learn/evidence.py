@@ -157,14 +157,19 @@ class Evidence:
         wi, ni, _, _ = self.pairs
         width = len(self.worlds.bits)
         table = np.empty((2 * len(atoms), len(wi)), dtype=bool)
-        crisp = [k for k, a in enumerate(atoms) if a.shape == (1, self.n)]
-        owned = [k for k, a in enumerate(atoms) if a.shape == (width, 1) and k not in crisp]
+        crisp: list[int] = []
+        owned: list[int] = []
+        for k, atom in enumerate(atoms):
+            if atom.shape == (1, self.n):
+                crisp.append(k)
+            elif atom.shape == (width, 1):
+                owned.append(k)
+            else:
+                table[2 * k] = np.broadcast_to(atom, (width, self.n))[wi, ni]
         if crisp:
             table[2 * np.asarray(crisp)] = np.concatenate([atoms[k] for k in crisp])[:, ni]
         if owned:
             table[2 * np.asarray(owned)] = np.concatenate([atoms[k] for k in owned], axis=1)[wi].T
-        for k in sorted(set(range(len(atoms))) - set(crisp) - set(owned)):
-            table[2 * k] = np.broadcast_to(atoms[k], (width, self.n))[wi, ni]
         table[1::2] = ~table[0::2]
         return table
 

@@ -74,7 +74,8 @@ def recency_feature(ages: np.ndarray, cfg: PredictConfig, rows: np.ndarray | Non
 
 
 def _log_recency(age: np.ndarray) -> np.ndarray:
-    """log(1 + age) of each age, ``NEVER_AGE`` where NaN (the logarithm taken of touched ones only)."""
+    """log(1 + age) of each age, ``NEVER_LOG`` (that of ``NEVER_AGE``) where NaN (never touched);
+    the logarithm is taken of the touched ones only."""
     touched = np.flatnonzero(~np.isnan(age))
     out = np.full(len(age), NEVER_LOG)
     out[touched] = np.log1p(np.maximum(age[touched], 0.0))

@@ -163,8 +163,8 @@ def owns_some(claims: np.ndarray) -> np.ndarray:
     """(m,) for claims (n, m) with NaN where none: whether some claim of each column says its agent
     owns something (the lenders; the others borrow, :func:`borrows`)."""
     with np.errstate(invalid="ignore"):  # NaN (no claim) compares False
-        out = np.asarray(np.asarray(claims, dtype=float) >= 0.5).any(axis=0)
-    return np.asarray(out, dtype=bool)
+        held = np.asarray(claims, dtype=float) >= 0.5
+    return np.asarray(held.any(axis=0), dtype=bool)
 
 
 def fit_shared_recency(recency: np.ndarray, p: np.ndarray,
