@@ -44,11 +44,13 @@ def all_rules(atoms, max_length: int) -> list[Rule]:
     return out
 
 
-def test_rule_counts_match_brute_force() -> None:
+@pytest.mark.parametrize("length", [3, 5])
+def test_rule_counts_match_brute_force(length: int) -> None:
+    # counted as cliques of the compatibility graph, never listed; 5 takes the recursive branch twice
     atoms = tuple(VOCAB.atoms())
-    counts = rule_counts(atoms, 3)
-    brute = [0] * 4
-    for r in all_rules(atoms, 3):
+    counts = rule_counts(atoms, length)
+    brute = [0] * (length + 1)
+    for r in all_rules(atoms, length):
         brute[len(r.literals)] += 1
     assert list(counts) == brute
 
