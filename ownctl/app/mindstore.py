@@ -529,9 +529,8 @@ def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:
     """The agents whose predictors a claim or touch about ``obj`` by ``agents`` may refit, for a
     partial load (:func:`load`), or None (load every agent) when an agent's predictor borrows from
     the others' claims or may start to (ownctl/ownership/predict.py, "What other agents' claims
-    teach"): while some agent has no claim that it owns an object other than ``obj``."""
-    if not to_config(tx.meta.settings()).predict.share_recency:
-        return list(agents)
+    teach"): while some agent has no claim that it owns an object other than ``obj``. (Stores
+    always share recency: the core's ``PredictConfig.share_recency`` has no store setting.)"""
     besides = tx.things.object(obj).id
     owning = tx.beliefs.agents_owning(besides)
     if all(a.id in owning for a in tx.world.agents()):
