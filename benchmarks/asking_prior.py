@@ -45,15 +45,21 @@ from ownctl.learn.posterior import RulePosterior  # noqa: E402
 from ownctl.mind import Mind  # noqa: E402
 
 
+def charged(rp: RulePosterior, charge: np.ndarray, temper: float) -> RulePosterior:
+    """``rp`` with each set's log weight lowered by ``charge`` (nats), then tempered as the asker
+    tempers (``ownctl.mind.ask.tempered``; at ``temper`` 1 only renormalised)."""
+    w = (rp.log_weights - charge) * temper
+    p = np.exp(w - w.max())
+    return dataclasses.replace(rp, probabilities=p / p.sum())
+
+
 def length_prior(mind: Mind, step: str, temper: float) -> RulePosterior:
     """The step's posterior reweighted to the description-length prior, then tempered."""
     rp = mind.rule_posterior(step)
     counts = rule_counts(tuple(mind.vocab.atoms()), mind.settings.learn.max_conditions)
     lengths = [len(r.literals) for r in rp.rules]
     charge = np.array([math.log(max(counts[n], 1)) if n < len(counts) else 0.0 for n in lengths] + [0.0])
-    w = (rp.log_weights - charge[rp.index].sum(axis=1)) * temper  # index -1 pads: no charge
-    p = np.exp(w - w.max())
-    return dataclasses.replace(rp, probabilities=p / p.sum())
+    return charged(rp, charge[rp.index].sum(axis=1), temper)  # index -1 pads: no charge
 
 
 def normalised(mind: Mind, step: str, temper: float) -> RulePosterior:
@@ -62,10 +68,7 @@ def normalised(mind: Mind, step: str, temper: float) -> RulePosterior:
     atoms, longest = tuple(mind.vocab.atoms()), mind.settings.learn.max_conditions
     model = model_for(atoms, longest)
     log_z = math.log(sum(n * math.exp(-model.cost(k)) for k, n in enumerate(rule_counts(atoms, longest))))
-    size = (rp.index >= 0).sum(axis=1)
-    w = (rp.log_weights - size * (log_z - math.log(0.5))) * temper
-    p = np.exp(w - w.max())
-    return dataclasses.replace(rp, probabilities=p / p.sum())
+    return charged(rp, (rp.index >= 0).sum(axis=1) * (log_z - math.log(0.5)), temper)
 
 
 PRIORS = {"length": length_prior, "normalised": normalised}

@@ -4,10 +4,7 @@ against the posterior computed afresh with that prior's model on the same space.
 from __future__ import annotations
 
 import dataclasses
-import importlib.util
 import math
-import sys
-from pathlib import Path
 from types import ModuleType
 
 import numpy as np
@@ -18,18 +15,11 @@ from ownctl.learn.model import model_for, rule_counts
 from ownctl.learn.posterior import MAX_RULES, RuleSpace, posterior
 from ownctl.mind import Mind, Switches
 from ownctl.world.generator import paper_blocks_world
-
-ROOT = Path(__file__).resolve().parents[2]
+from tests.benchmark_loader import load_benchmark
 
 
 def _benchmark() -> ModuleType:
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    spec = importlib.util.spec_from_file_location("asking_prior", ROOT / "benchmarks" / "asking_prior.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["asking_prior"] = module
-    spec.loader.exec_module(module)
-    return module
+    return load_benchmark("asking_prior")
 
 
 def _taught() -> Mind:

@@ -2,21 +2,13 @@
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
 from types import ModuleType
 
-ROOT = Path(__file__).resolve().parents[2]
+from tests.benchmark_loader import load_benchmark
 
 
 def _benchmark() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("search_gap", ROOT / "benchmarks" / "search_gap.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["search_gap"] = module
-    spec.loader.exec_module(module)
-    return module
+    return load_benchmark("search_gap")
 
 
 def test_every_action_is_right_with_every_permission_and_exact_owners() -> None:

@@ -2,21 +2,13 @@
 
 from __future__ import annotations
 
-import importlib.util
-import sys
-from pathlib import Path
 from types import ModuleType
 
-ROOT = Path(__file__).resolve().parents[2]
+from tests.benchmark_loader import load_benchmark
 
 
 def _benchmark() -> ModuleType:
-    spec = importlib.util.spec_from_file_location("task_trials", ROOT / "benchmarks" / "task_trials.py")
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules["task_trials"] = module  # the worker processes find its functions by this name
-    spec.loader.exec_module(module)
-    return module
+    return load_benchmark("task_trials")
 
 
 def test_the_paired_difference_counts_only_trials_both_runs_have() -> None:
