@@ -13,6 +13,7 @@ import pytest
 from ownctl.config import LearnConfig, Settings
 from ownctl.learn.model import model_for, rule_counts
 from ownctl.learn.posterior import MAX_RULES, RuleSpace, posterior
+from ownctl.logic.prob import p_forbidden
 from ownctl.mind import Mind, Switches
 from ownctl.world.generator import paper_blocks_world
 from tests.benchmark_loader import load_benchmark
@@ -50,3 +51,20 @@ def test_the_reweighted_posterior_is_the_posterior_of_that_prior(prior: str) -> 
     got = bench.PRIORS[prior](mind, "trash", 1.0).probabilities
     np.testing.assert_allclose(got, fresh.probabilities, atol=1e-12)
     assert np.abs(got - rp.probabilities).max() > 0.01  # a different prior, a different posterior
+
+
+def test_the_coverage_prior_charges_each_rule_its_share_of_objects() -> None:
+    """Brute force: each set's weight is its stated weight minus the weight times the summed mean
+    P(rule holds) of its rules over the Mind's objects, computed object by object."""
+    bench, mind = _benchmark(), _taught()
+    rp = mind.rule_posterior("trash")
+    frame, n = mind.frame(), len(mind.objects)
+    share = {r: sum(float(p_forbidden((r,), frame.take([i]))[0]) for i in range(n)) / n for r in rp.rules}
+    want = np.array([w - bench.COVERAGE_WEIGHT * sum(share[r] for r in rules)
+                     for w, rules in zip(rp.log_weights, rp.sets, strict=True)])
+    want = np.exp(want - want.max())
+    got = bench.PRIORS["coverage"](mind, "trash", 1.0).probabilities
+    np.testing.assert_allclose(got, want / want.sum(), atol=1e-12)
+    broad = max(share, key=lambda r: share[r])  # the broadest rule loses weight to the narrower ones
+    member = np.array([broad in rules for rules in rp.sets])
+    assert got[member].sum() < rp.probabilities[member].sum()
