@@ -24,12 +24,14 @@ from __future__ import annotations
 
 import functools
 import itertools
+from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ownctl.config import LearnConfig
+from ownctl.learn import calibration
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import calibrated_inducer, subtract
 from ownctl.learn.model import Model, compatible, extensions, literal_list, model_for
@@ -235,7 +237,10 @@ def posterior(ev: Evidence, action: str, space: RuleSpace, model: Model,
     every = (*space.given, *space.pool)
     g = len(space.given)
     index = np.hstack([np.broadcast_to(np.arange(g), (len(sets), g)), np.where(sets >= 0, sets + g, -1)])
-    return RulePosterior(action, every, index, logw, weights / z, top + float(np.log(z)), tuple(allows))
+    probabilities = weights / z
+    for array in (index, logw, probabilities):  # shared by every holder of this posterior
+        array.setflags(write=False)
+    return RulePosterior(action, every, index, logw, probabilities, top + float(np.log(z)), tuple(allows))
 
 
 def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: Model, max_length: int,
@@ -294,7 +299,40 @@ def rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfi
 
     The examples are read through the claim calibration the learner chooses for them
     (:func:`ownctl.learn.induce.calibrated_inducer`), so that the posterior and the learned rules
-    rest on the same model."""
+    rest on the same model.
+
+    A pure function of its arguments' contents, so results are kept by content
+    (:func:`evidence_key`): valuing questions builds many what-if Minds whose permissions are the
+    same (about six in seven of a task's posteriors), and the same inputs give the very same
+    (immutable) posterior."""
+    key = (evidence_key(ev), action, vocab, cfg, model_for(vocab.atoms(), cfg.max_conditions),
+           calibration.CALIBRATIONS, tuple(rules), tuple(given), tuple(allows), size, max_rules, max_length)
+    hit = _posteriors.get(key)
+    if hit is not None:
+        _posteriors.move_to_end(key)
+        return hit
+    out = _rule_posterior(ev, action, vocab, cfg, rules, given, allows, size, max_rules, max_length)
+    _posteriors[key] = out
+    if len(_posteriors) > POSTERIORS:
+        _posteriors.popitem(last=False)
+    return out
+
+
+POSTERIORS = 256  # posteriors kept by content (least recently used dropped first)
+_posteriors: OrderedDict[tuple[object, ...], RulePosterior] = OrderedDict()
+
+
+def evidence_key(ev: Evidence) -> tuple[object, ...]:
+    """Everything an :class:`Evidence` is made of, as a hashable value (equal keys, equal evidence):
+    the permission values, the agents and ownership probabilities, colours, areas and categories,
+    in the examples' order."""
+    return (ev.t.tobytes(), *ev.frame.content())
+
+
+def _rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfig, rules: Sequence[Rule],
+                    given: Sequence[Rule], allows: Sequence[Rule], size: int, max_rules: int,
+                    max_length: int) -> RulePosterior:
+    """:func:`rule_posterior`, computed."""
     if cfg.learner == "ours":  # on the examples the learner learns from (Evidence.beyond)
         ev = calibrated_inducer(action, ev.beyond(allows)[0], vocab, cfg, tuple(given))[0].ev
     atoms = vocab.atoms()

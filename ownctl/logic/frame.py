@@ -65,6 +65,15 @@ class Frame:
             return np.array([arg in c for c in self.categories], dtype=bool)
         raise ValueError(f"{pred} is not a crisp predicate")
 
+    def content(self) -> tuple[object, ...]:
+        """Everything the frame is made of, as a hashable value (equal values, equal frames): the
+        agents and ownership probabilities, colours, areas and categories, in the objects' order.
+        Results computed from a frame are kept by it (:mod:`ownctl.learn.posterior`,
+        :mod:`ownctl.mind.ask`)."""
+        areas = tuple((name, np.asarray(self.areas[name], dtype=bool).tobytes())
+                      for name in sorted(self.areas))
+        return (self.agents, self.own.shape, self.own.tobytes(), self.colors, areas, self.categories)
+
     def with_own(self, own: np.ndarray) -> Frame:
         """The same objects with other ownership probabilities."""
         return Frame(self.agents, own, self.colors, self.areas, self.categories)

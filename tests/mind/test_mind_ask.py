@@ -25,6 +25,7 @@ from ownctl.learn.model import LABEL_NOISE
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
 from ownctl.logic.vocab import object_steps
 from ownctl.mind import Mind
+from ownctl.mind import ask as ask_module
 from ownctl.mind.ask import (
     Answer,
     Question,
@@ -169,6 +170,25 @@ def test_a_step_marginal_equals_the_posterior_predictive() -> None:
         worlds = worlds_for(mind, [s], frame)
         marginal = (worlds.weights * step_forbidden(mind.rule_posterior(s), frame, worlds)).sum(axis=0)
         assert np.allclose(marginal, mind.rule_posterior(s).p_forbidden(frame), atol=1e-12)
+
+
+def test_a_kept_step_marginal_is_the_one_computed_afresh() -> None:
+    """step_forbidden keeps its results by content: the same posterior asked about other objects,
+    or about the same objects read through another ownership, gets their own values, and a kept
+    value cannot be changed in place."""
+    mind = small_mind(2, n=5, perms=4)
+    rp = mind.rule_posterior("trash")
+    frames = [mind.frame().take([i]) for i in range(5)]
+    frames.append(frames[0].with_own(calibrate(frames[0].own, *CALIBRATIONS[1])))
+    for _ in range(2):  # the second round is served from what the first kept
+        for frame in frames:
+            worlds = worlds_for(mind, ["trash"], frame)
+            table = ask_module._set_table(rp, frame, worlds)
+            expected = np.clip(np.einsum("k,kwn->wn", rp.probabilities, table.astype(float)), 0.0, 1.0)
+            got = step_forbidden(rp, frame, worlds)
+            assert np.array_equal(got, expected)
+            with pytest.raises(ValueError):
+                got[0, 0] = 0.5
 
 
 def brute_answers(mind: Mind, q: Question, temper: float = 1.0,
