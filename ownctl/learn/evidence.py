@@ -70,6 +70,13 @@ class Evidence:
         self._rules: dict[Rule, np.ndarray] = {}
         self._stacks: dict[tuple[Literal, ...], np.ndarray] = {}
 
+    def content(self) -> tuple[object, ...]:
+        """Everything the examples are made of, as a hashable value (equal values, equal evidence):
+        the permission values and the frame's content (:meth:`Frame.content`), in the examples'
+        order. Results computed from evidence are kept by it (:mod:`ownctl.learn.posterior`,
+        :func:`ownctl.learn.induce.calibration_objectives`)."""
+        return (self.t.tobytes(), *self.frame.content())
+
     def reordered(self, order: Sequence[int] | np.ndarray) -> Evidence:
         """The examples at the indices ``order`` (a permutation, or a subset), in that order, sharing
         the enumerated worlds."""

@@ -28,7 +28,7 @@ from typing import Any
 import numpy as np
 
 from ownctl.config import LearnConfig
-from ownctl.learn import exact
+from ownctl.learn import calibration, exact
 from ownctl.learn.algebra import merge_rule, rule_diff, specialising
 from ownctl.learn.calibration import calibrated
 from ownctl.learn.calibration import candidates as calibration_candidates
@@ -203,13 +203,37 @@ def calibration_choices(action: str, ev: Evidence, vocab: Vocabulary, cfg: Learn
     calibration's trace without example ``new``; the objectives are those of the examples in
     canonical order, so they depend only on the set of permissions."""
     out: dict[tuple[float, float], tuple[Inducer, exact.Choice, float]] = {}
-    for calibration in calibration_candidates(ev):
-        ind = Inducer(action, calibrated(ev, calibration), vocab, cfg)
+    for reading in calibration_candidates(ev):
+        ind = Inducer(action, calibrated(ev, reading), vocab, cfg)
         choice = ind.traced(given, new)
         run = choice.runs[choice.chosen]
         assert run is not None
-        out[calibration] = (ind, choice, run.objective)
+        out[reading] = (ind, choice, run.objective)
     return out
+
+
+def calibration_objectives(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
+                           given: Sequence[Rule]) -> dict[tuple[float, float], float]:
+    """The objectives of :func:`calibration_choices`, per calibration worth trying (in order).
+
+    A pure function of its arguments' contents, so kept by content (:meth:`Evidence.content`, least
+    recently used dropped first): valuing a question asks it of many what-if Minds whose
+    permissions and ownership are the same (docs/asking.md, section 1)."""
+    key = (ev.content(), action, vocab, cfg, model_for(vocab.atoms(), cfg.max_conditions),
+           calibration.CALIBRATIONS, tuple(given), MAX_RULES)
+    kept = _objectives.get(key)
+    if kept is not None:
+        _objectives.move_to_end(key)
+        return dict(kept)
+    out = {cal: option[2] for cal, option in calibration_choices(action, ev, vocab, cfg, given).items()}
+    _objectives[key] = out
+    if len(_objectives) > OBJECTIVES:
+        _objectives.popitem(last=False)
+    return dict(out)
+
+
+OBJECTIVES = 4096  # calibration objectives kept by content (a few floats each)
+_objectives: OrderedDict[tuple[Any, ...], dict[tuple[float, float], float]] = OrderedDict()
 
 
 def calibrated_inducer(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,

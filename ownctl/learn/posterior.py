@@ -302,10 +302,10 @@ def rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfi
     rest on the same model.
 
     A pure function of its arguments' contents, so results are kept by content
-    (:func:`evidence_key`): valuing questions builds many what-if Minds whose permissions are the
+    (:meth:`Evidence.content`): valuing questions builds many what-if Minds whose permissions are the
     same (about six in seven of a task's posteriors), and the same inputs give the very same
     (immutable) posterior."""
-    key = (evidence_key(ev), action, vocab, cfg, model_for(vocab.atoms(), cfg.max_conditions),
+    key = (ev.content(), action, vocab, cfg, model_for(vocab.atoms(), cfg.max_conditions),
            calibration.CALIBRATIONS, tuple(rules), tuple(given), tuple(allows), size, max_rules, max_length)
     hit = _posteriors.get(key)
     if hit is not None:
@@ -321,13 +321,6 @@ def rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfi
 POSTERIORS = 256  # posteriors kept by content, least recently used dropped first (each up to ~0.4 MB: a
 # pool of 40 rules has ~10,000 sets; on a 4-question task, 128 would compute 20% more of them)
 _posteriors: OrderedDict[tuple[object, ...], RulePosterior] = OrderedDict()
-
-
-def evidence_key(ev: Evidence) -> tuple[object, ...]:
-    """Everything an :class:`Evidence` is made of, as a hashable value (equal keys, equal evidence):
-    the permission values, the agents and ownership probabilities, colours, areas and categories,
-    in the examples' order."""
-    return (ev.t.tobytes(), *ev.frame.content())
 
 
 def _rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfig, rules: Sequence[Rule],

@@ -27,7 +27,7 @@ import numpy as np
 
 from ownctl.errors import BadValue
 from ownctl.learn.calibration import CALIBRATIONS, IDENTITY, calibrate
-from ownctl.learn.induce import calibration_choices
+from ownctl.learn.induce import calibration_objectives
 from ownctl.learn.model import LABEL_NOISE
 from ownctl.learn.posterior import RulePosterior
 from ownctl.logic.frame import Frame
@@ -276,9 +276,9 @@ def task_reading(mind: Mind, steps: Sequence[str]) -> Reading:
         ev, _ = mind.evidence(step)
         if ev.n == 0:
             continue
-        options = calibration_choices(step, ev, mind.vocab, mind.settings.learn, mind.given(step))
+        options = calibration_objectives(step, ev, mind.vocab, mind.settings.learn, mind.given(step))
         for cal in CALIBRATIONS:  # with no uncertain ownership, every calibration reads as the identity
-            totals[cal] += options.get(cal, options[IDENTITY])[2]
+            totals[cal] += options.get(cal, options[IDENTITY])
     return min(CALIBRATIONS, key=lambda cal: (round(totals[cal], 9), CALIBRATIONS.index(cal)))
 
 

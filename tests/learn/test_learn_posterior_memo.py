@@ -1,6 +1,7 @@
-"""Posteriors over rule sets are kept by content (``ownctl.learn.posterior.rule_posterior``): a kept
-posterior must be exactly the one computed afresh, for inputs that differ in any part of their
-content, and nobody may change it in place."""
+"""Posteriors over rule sets (``ownctl.learn.posterior.rule_posterior``) and the claim calibrations'
+objectives (``ownctl.learn.induce.calibration_objectives``) are kept by content: a kept result must
+be exactly the one computed afresh, for inputs that differ in any part of their content, and nobody
+may change it in place."""
 
 from __future__ import annotations
 
@@ -10,6 +11,7 @@ import numpy as np
 import pytest
 
 from ownctl.config import LearnConfig
+from ownctl.learn import induce
 from ownctl.learn import posterior as post
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.logic.frame import Frame
@@ -58,7 +60,7 @@ def fresh(frame: Frame, values: np.ndarray) -> post.RulePosterior:
 def test_a_kept_posterior_is_the_one_computed_afresh(seed: int) -> None:
     frame, values = base_frame(seed)
     for other, vals in variants(frame, values):
-        assert post.evidence_key(Evidence(other, vals)) != post.evidence_key(Evidence(frame, values))
+        assert Evidence(other, vals).content() != Evidence(frame, values).content()
         expected = fresh(other, vals)
         post.rule_posterior(Evidence(frame, values), "trash", VOCAB, LearnConfig())  # kept first
         got = post.rule_posterior(Evidence(other, vals), "trash", VOCAB, LearnConfig())
@@ -79,3 +81,27 @@ def test_equal_content_gives_the_same_posterior_and_it_is_read_only() -> None:
     for array in (first.probabilities, first.log_weights, first.index):
         with pytest.raises(ValueError):
             array[0] = 0
+
+
+def fresh_objectives(frame: Frame, values: np.ndarray) -> dict[tuple[float, float], float]:
+    return {cal: option[2] for cal, option in
+            induce.calibration_choices("trash", Evidence(frame, values), VOCAB, LearnConfig(), ()).items()}
+
+
+@pytest.mark.parametrize("seed", range(3))
+def test_kept_calibration_objectives_are_the_ones_computed_afresh(seed: int) -> None:
+    frame, values = base_frame(seed)
+    for other, vals in variants(frame, values):
+        induce._objectives.clear()
+        induce.calibration_objectives("trash", Evidence(frame, values), VOCAB, LearnConfig(), ())  # kept
+        got = induce.calibration_objectives("trash", Evidence(other, vals), VOCAB, LearnConfig(), ())
+        assert got == fresh_objectives(other, vals)
+
+
+def test_calibration_objectives_cannot_be_changed_through_a_result() -> None:
+    frame, values = base_frame(4)
+    first = induce.calibration_objectives("trash", Evidence(frame, values), VOCAB, LearnConfig(), ())
+    assert len(first) == 2  # uncertain ownership: the identity and the other calibration
+    first[next(iter(first))] = -1.0
+    again = induce.calibration_objectives("trash", Evidence(frame, values), VOCAB, LearnConfig(), ())
+    assert again == fresh_objectives(frame, values)
