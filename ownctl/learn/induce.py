@@ -20,10 +20,8 @@ Everything is deterministic: canonical literal order, stable sorts, ordered exam
 
 from __future__ import annotations
 
-from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -35,11 +33,12 @@ from ownctl.learn.calibration import candidates as calibration_candidates
 from ownctl.learn.evidence import MAX_NAMED_AGENTS, Evidence, Vocabulary
 from ownctl.learn.model import Model, model_for
 from ownctl.learn.search import rule_search
+from ownctl.logic.kept import Kept
 from ownctl.logic.rules import ANY, Norm, Rule
 
 MAX_RULES = 5  # ours: rules re-induction may add to the given ones
 TRACES = 4096  # ours: re-induction traces kept for certification (a memo: results never depend on it)
-_traces: OrderedDict[tuple[Any, ...], exact.Choice] = OrderedDict()
+_traces: Kept[exact.Choice] = Kept(TRACES)
 
 
 @dataclass(frozen=True)
@@ -147,18 +146,13 @@ class Inducer:
         full = (key, tuple(digests))
         known = _traces.get(full)
         if known is not None:
-            _traces.move_to_end(full)
             return known
         earlier = None
         if new is not None:
-            earlier = _traces.get((key, tuple(d for k, d in enumerate(digests) if order[k] != new)))
+            earlier = _traces.peek((key, tuple(d for k, d in enumerate(digests) if order[k] != new)))
         trace = exact.reinduce(canon, self.action, given, self.atoms, self.model, self.cfg.max_conditions,
                                MAX_RULES, earlier, None if new is None else order.index(new))
-        _traces[full] = trace
-        _traces.move_to_end(full)
-        while len(_traces) > TRACES:
-            _traces.popitem(last=False)
-        return trace
+        return _traces.put(full, trace)
 
     # -- Algorithms 3 and 4 ------------------------------------------------------------------
     def cover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
@@ -219,21 +213,24 @@ def calibration_objectives(action: str, ev: Evidence, vocab: Vocabulary, cfg: Le
     A pure function of its arguments' contents, so kept by content (:meth:`Evidence.content`, least
     recently used dropped first): valuing a question asks it of many what-if Minds whose
     permissions and ownership are the same (docs/asking.md, section 1)."""
-    key = (ev.content(), action, vocab, cfg, model_for(vocab.atoms(), cfg.max_conditions),
-           calibration.CALIBRATIONS, tuple(given), MAX_RULES)
+    key = (*learning_inputs(action, ev, vocab, cfg), tuple(given), MAX_RULES)
     kept = _objectives.get(key)
-    if kept is not None:
-        _objectives.move_to_end(key)
-        return dict(kept)
-    out = {cal: option[2] for cal, option in calibration_choices(action, ev, vocab, cfg, given).items()}
-    _objectives[key] = out
-    if len(_objectives) > OBJECTIVES:
-        _objectives.popitem(last=False)
-    return dict(out)
+    if kept is None:
+        kept = _objectives.put(key, {cal: option[2] for cal, option in
+                                     calibration_choices(action, ev, vocab, cfg, given).items()})
+    return dict(kept)
+
+
+def learning_inputs(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig) -> tuple[object, ...]:
+    """What every result of learning from ``ev`` depends on, as a hashable value: the examples'
+    content (:meth:`Evidence.content`), the action, vocabulary and settings, the stated model and the
+    claim calibrations; the key of results kept by content (here and :mod:`ownctl.learn.posterior`)."""
+    return (ev.content(), action, vocab, cfg, model_for(vocab.atoms(), cfg.max_conditions),
+            calibration.CALIBRATIONS)
 
 
 OBJECTIVES = 4096  # calibration objectives kept by content (a few floats each)
-_objectives: OrderedDict[tuple[Any, ...], dict[tuple[float, float], float]] = OrderedDict()
+_objectives: Kept[dict[tuple[float, float], float]] = Kept(OBJECTIVES)
 
 
 def calibrated_inducer(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,

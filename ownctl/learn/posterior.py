@@ -24,18 +24,17 @@ from __future__ import annotations
 
 import functools
 import itertools
-from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
 
 from ownctl.config import LearnConfig
-from ownctl.learn import calibration
 from ownctl.learn.evidence import Evidence, Vocabulary
-from ownctl.learn.induce import calibrated_inducer, subtract
+from ownctl.learn.induce import calibrated_inducer, learning_inputs, subtract
 from ownctl.learn.model import Model, compatible, extensions, literal_list, model_for
 from ownctl.logic.frame import Frame
+from ownctl.logic.kept import Kept
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import ANY, Literal, Rule, implies
 
@@ -305,22 +304,18 @@ def rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfi
     (:meth:`Evidence.content`): valuing questions builds many what-if Minds whose permissions are the
     same (about six in seven of a task's posteriors), and the same inputs give the very same
     (immutable) posterior."""
-    key = (ev.content(), action, vocab, cfg, model_for(vocab.atoms(), cfg.max_conditions),
-           calibration.CALIBRATIONS, tuple(rules), tuple(given), tuple(allows), size, max_rules, max_length)
+    key = (*learning_inputs(action, ev, vocab, cfg), tuple(rules), tuple(given), tuple(allows), size,
+           max_rules, max_length)
     hit = _posteriors.get(key)
     if hit is not None:
-        _posteriors.move_to_end(key)
         return hit
-    out = _rule_posterior(ev, action, vocab, cfg, rules, given, allows, size, max_rules, max_length)
-    _posteriors[key] = out
-    if len(_posteriors) > POSTERIORS:
-        _posteriors.popitem(last=False)
-    return out
+    return _posteriors.put(key, _rule_posterior(ev, action, vocab, cfg, rules, given, allows, size,
+                                                max_rules, max_length))
 
 
 POSTERIORS = 256  # posteriors kept by content, least recently used dropped first (each up to ~0.4 MB: a
 # pool of 40 rules has ~10,000 sets; on a 4-question task, 128 would compute 20% more of them)
-_posteriors: OrderedDict[tuple[object, ...], RulePosterior] = OrderedDict()
+_posteriors: Kept[RulePosterior] = Kept(POSTERIORS)
 
 
 def _rule_posterior(ev: Evidence, action: str, vocab: Vocabulary, cfg: LearnConfig, rules: Sequence[Rule],

@@ -18,7 +18,6 @@ ranks the candidates (docs/asking.md, sections 2-3).
 from __future__ import annotations
 
 import dataclasses
-from collections import OrderedDict
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TypeVar
@@ -31,6 +30,7 @@ from ownctl.learn.induce import calibration_objectives
 from ownctl.learn.model import LABEL_NOISE
 from ownctl.learn.posterior import RulePosterior
 from ownctl.logic.frame import Frame
+from ownctl.logic.kept import Kept
 from ownctl.logic.prob import (
     OTHER,
     Worlds,
@@ -311,18 +311,15 @@ def step_forbidden(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarra
     key = (id(rp), frame.content(), worlds.atoms, worlds.bits.tobytes(), worlds.weights.tobytes())
     hit = _FORBIDDEN.get(key)
     if hit is not None and hit[0] is rp:
-        _FORBIDDEN.move_to_end(key)
         return hit[1]
     table = _set_table(rp, frame, worlds)
     out: np.ndarray = np.clip(np.einsum("k,kwn->wn", rp.probabilities, table.astype(float)), 0.0, 1.0)
     out.setflags(write=False)
-    _FORBIDDEN[key] = (rp, out)
-    if len(_FORBIDDEN) > 4096:
-        _FORBIDDEN.popitem(last=False)
+    _FORBIDDEN.put(key, (rp, out))
     return out
 
 
-_FORBIDDEN: OrderedDict[tuple[object, ...], tuple[RulePosterior, np.ndarray]] = OrderedDict()
+_FORBIDDEN: Kept[tuple[RulePosterior, np.ndarray]] = Kept(4096)
 
 
 def worlds_for(mind: Mind, steps: Sequence[str], frame: Frame) -> Worlds:
