@@ -306,8 +306,10 @@ def step_forbidden(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarra
     """(W, n): P(the step is forbidden | ownership world w) for each object, marginalised over the
     rule sets of ``rp`` (the posterior of one action).
 
-    Kept by content for the last few thousand calls (read-only results): valuing a question asks
-    for the same posterior on the same objects and worlds about three times in four."""
+    Kept for the last few thousand calls (read-only results), by the posterior itself (posteriors
+    are kept by content, :func:`ownctl.learn.posterior.rule_posterior`, so equal inputs share one)
+    and the content of the frame and worlds: valuing a question asks for the same posterior on the
+    same objects and worlds about three times in four."""
     key = (id(rp), frame.content(), worlds.atoms, worlds.bits.tobytes(), worlds.weights.tobytes())
     hit = _FORBIDDEN.get(key)
     if hit is not None and hit[0] is rp:
