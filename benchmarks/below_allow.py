@@ -5,6 +5,7 @@ deciding more cautiously among near-best rule sets would change.
         [--conditions "noiseless 0.25,noisy 0.25"] [--ties none|min|mean] [--within NATS]
         [--jobs 2] [--json]
     python benchmarks/below_allow.py --paper [--ties ...] [--within NATS]
+    python benchmarks/below_allow.py --probfoil benchmarks/data/probfoil.json [--ties ...] [--within NATS]
 
 On the Table 1 protocol over norm families (trials drawn as ``ownctl experiment norms --families``
 draws them; default family seeds 0-99, tuning families, not the reserved 1000-1099), each family's
@@ -20,7 +21,10 @@ learner otherwise picks one of equally probable rule sets by the canonical order
 are variants measured for docs/norm-families.md, not ownctl's decisions (``none``: ownctl's own,
 the most probable rule set). ``--paper``: instead, Table 1's accuracy per condition on exactly its
 100 trials (the paper's blocks world and norms, ``ownctl experiment norms``) under the decision
-chosen.
+chosen. ``--probfoil CACHE``: instead, on every trial of ProbFOIL's cache
+(``benchmarks/generalisation.py``'s), the paired difference ours - ProbFOIL per condition (mean
+over families of each family's mean difference of accuracy and of F1, the trial's figure being
+the mean over its actions, with a 95% interval), as that benchmark reports it.
 """
 
 from __future__ import annotations
@@ -37,7 +41,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from ownctl.experiment.metrics import rule_scores  # noqa: E402
+from ownctl.experiment.metrics import ci95, rule_scores  # noqa: E402
 from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, taught_mind  # noqa: E402
 from ownctl.experiment.runner import trial_rng  # noqa: E402
 from ownctl.logic.frame import Frame  # noqa: E402
@@ -89,6 +93,37 @@ def cell(family: int, c: int, trials: int, ties: str = "none", within: float = 1
                         for a, v in per.items()}}
 
 
+def paired(cache: dict[str, Any], ties: str, within: float, jobs: int) -> dict[str, dict[str, Any]]:
+    """Ours - ProbFOIL on every trial of ProbFOIL's ``cache`` (keys ``family/condition/trial``),
+    per condition: mean over families of the per-family mean difference, accuracy and F1."""
+    names = {c.name: i for i, c in enumerate(NORM_CONDITIONS)}
+    keys = [k for k in cache if k.split("/")[0] != "paper"]
+    units = [(int(k.split("/")[0]), names[k.split("/")[1]], int(k.split("/")[2]), ties, within) for k in keys]
+    with ProcessPoolExecutor(max_workers=max(jobs, 1)) as pool:
+        ours = list(pool.map(_trial_scores, units))
+    diffs: dict[str, dict[int, list[tuple[float, float]]]] = {}
+    for k, (f, c, _, _, _), (acc, f1) in zip(keys, units, ours, strict=True):
+        theirs = [v["scores"] for v in cache[k]["actions"].values()]
+        d = (acc - float(np.mean([x[0] for x in theirs])), f1 - float(np.mean([x[3] for x in theirs])))
+        diffs.setdefault(NORM_CONDITIONS[c].name, {}).setdefault(f, []).append(d)
+    out = {}
+    for name, fams in diffs.items():
+        per = np.array([np.mean(v, axis=0) for v in fams.values()])
+        out[name] = {"families": len(per), "accuracy": [float(per[:, 0].mean()), ci95(per[:, 0])],
+                     "f1": [float(per[:, 1].mean()), ci95(per[:, 1])]}
+    return out
+
+
+def _trial_scores(args: tuple[int, int, int, str, float]) -> tuple[float, float]:
+    """Ours' mean accuracy and F1 over the actions of one trial (family, condition, trial)."""
+    family, c, t, ties, within = args
+    setup = norms_setup(norm_family(family), NORM_CONDITIONS[c], trial_rng(0, c, t, family))
+    mind = taught_mind(setup)
+    scores = [rule_scores(setup.answers[a], cautious(mind, a, setup.true_frame, ties, within))
+              for a in setup.rules]
+    return float(np.mean([x.accuracy for x in scores])), float(np.mean([x.f1 for x in scores]))
+
+
 def _cell(args: tuple[int, int, int, str, float]) -> dict[str, Any]:
     return cell(*args)
 
@@ -103,8 +138,18 @@ def main() -> None:
     parser.add_argument("--within", type=float, default=1e-6)
     parser.add_argument("--jobs", type=int, default=2)
     parser.add_argument("--paper", action="store_true")
+    parser.add_argument("--probfoil", type=Path, metavar="CACHE")
     parser.add_argument("--json", action="store_true")
     args = parser.parse_args()
+    if args.probfoil is not None:
+        result = paired(json.loads(args.probfoil.read_text()), args.ties, args.within, args.jobs)
+        if args.json:
+            print(json.dumps({"ties": args.ties, "within": args.within, "paired": result}, indent=2))
+            return
+        for name, r in result.items():
+            print(f"{name}: ours - ProbFOIL accuracy {r['accuracy'][0]:+.4f} ± {r['accuracy'][1]:.4f}, "
+                  f"F1 {r['f1'][0]:+.4f} ± {r['f1'][1]:.4f} ({r['families']} families)")
+        return
     names = {c.name: i for i, c in enumerate(NORM_CONDITIONS) if not c.baseline}
     wanted = [s.strip() for s in args.conditions.split(",") if s.strip()]
     for name in wanted:

@@ -58,3 +58,13 @@ def test_a_cell_reports_ours_and_allowing_everything() -> None:
     assert out["family"] == 1 and out["condition"] == "noiseless 0.25"
     assert set(out["actions"]) == {"trash", "pickUp", "collect"}
     assert 0.0 <= out["ours"] <= 1.0 and 0.0 <= out["allow"] <= 1.0
+
+
+def test_paired_is_ours_minus_probfoils_cached_scores() -> None:
+    bench = _benchmark()
+    cache = {"1/noiseless 0.25/5": {"actions": {"collect": {"scores": [0.9, 1.0, 0.5, 0.6]},
+                                                "pickUp": {"scores": [0.7, 1.0, 0.5, 0.4]}}}}
+    acc, f1 = bench._trial_scores((1, SPARSE, 5, "none", 1e-6))
+    got = bench.paired(cache, "none", 1e-6, 1)["noiseless 0.25"]
+    assert got["families"] == 1
+    assert abs(got["accuracy"][0] - (acc - 0.8)) < 1e-12 and abs(got["f1"][0] - (f1 - 0.5)) < 1e-12
