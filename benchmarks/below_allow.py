@@ -16,11 +16,13 @@ and per condition the count of such cells and ours' mean accuracy over families.
 ``--ties`` decides each action on more than the learner's rule set: with ``min`` an object is
 forbidden only as far as *every* rule set whose log posterior is within ``--within`` nats of the
 most probable one (and the learner's own) forbids it (the least P(forbidden) among them); with
-``mean``, the average of those sets' P(forbidden). ``--within 1e-6`` takes exact ties only (the
-learner otherwise picks one of equally probable rule sets by the canonical order of rules). These
-are variants measured for docs/norm-families.md, not ownctl's decisions (``none``: ownctl's own,
-the most probable rule set). ``--paper``: instead, Table 1's accuracy per condition on exactly its
-100 trials (the paper's blocks world and norms, ``ownctl experiment norms``) under the decision
+``mean``, the average of those sets' P(forbidden), each set counted once: ownctl's
+``decide.rules window`` with ``decide.window`` set to ``--within``. ``--within 1e-6`` takes exact
+ties only (the learner otherwise picks one of equally probable rule sets by the canonical order of
+rules). ``none``: the most probable rule set (``decide.rules map``). ``min`` is a variant measured
+for docs/norm-families.md, not one of ownctl's decisions. ``--paper``: instead, Table 1's
+accuracy per condition on exactly its 100 trials (the paper's blocks world and norms, ``ownctl
+experiment norms``) under the decision
 chosen. ``--probfoil CACHE``: instead, on every trial of ProbFOIL's cache
 (``benchmarks/generalisation.py``'s), the paired difference ours - ProbFOIL per condition (mean
 over families of each family's mean difference of accuracy and of F1, the trial's figure being
@@ -44,6 +46,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from ownctl.experiment.metrics import ci95, rule_scores  # noqa: E402
 from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, taught_mind  # noqa: E402
 from ownctl.experiment.runner import trial_rng  # noqa: E402
+from ownctl.learn.posterior import window_p_forbidden  # noqa: E402
 from ownctl.logic.frame import Frame  # noqa: E402
 from ownctl.mind import Mind  # noqa: E402
 from ownctl.world.families import norm_family  # noqa: E402
@@ -53,18 +56,20 @@ TIES = ("none", "min", "mean")
 
 
 def cautious(mind: Mind, action: str, frame: Frame, ties: str, within: float) -> np.ndarray:
-    """P(forbidden) of ``action`` on every object of ``frame``: the learner's rule set's (``none``),
-    or the least (``min``) or mean (``mean``) over it and every rule set of the posterior within
-    ``within`` nats of the most probable one."""
+    """P(forbidden) of ``action`` on every object of ``frame``: the learner's rule set's (``none``);
+    with ``mean``, ownctl's ``decide.rules window`` of width ``within`` (the mean over the learner's
+    set and every rule set within ``within`` nats of the most probable, each counted once); with
+    ``min``, the least P(forbidden) among those sets."""
     own = mind.p_rules_on(action, frame)
     if ties == "none" or not mind.perms[action]:
         return own
     post = mind.rule_posterior(action)
+    if ties == "mean":  # what the Mind decides on under decide.rules window
+        return window_p_forbidden(post, mind.rules[action], frame, within)
     top = np.flatnonzero(post.log_weights >= post.log_weights.max() - within)
     alone = [replace(post, index=post.index[k:k + 1], log_weights=post.log_weights[k:k + 1],
                      probabilities=np.ones(1)).p_forbidden(frame) for k in top.tolist()]
-    table = np.array([own, *alone])
-    out: np.ndarray = table.min(axis=0) if ties == "min" else table.mean(axis=0)
+    out: np.ndarray = np.array([own, *alone]).min(axis=0)
     return out
 
 

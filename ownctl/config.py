@@ -9,7 +9,12 @@ from dataclasses import dataclass, field
 
 #: How learned rules decide a step: on the most probable rule set, or marginalised over the
 #: posterior over rule sets (docs/learning.md).
-DECIDE_RULES = ("map", "posterior")
+DECIDE_RULES = ("map", "posterior", "window")
+
+#: The default width, in nats of log posterior, of the window of near-best rule sets that decide
+#: under ``decide.rules = window`` (setting ``decide.window``; chosen on tuning norm families,
+#: docs/norm-families.md).
+DECIDE_WINDOW = 2.0
 
 #: How the robot asks during a task, by default (docs/asking.md, section 4): the expected mistakes
 #: a question must save before it is put (setting ``ask.min_gain``); the kinds of question asked
@@ -77,6 +82,7 @@ class Settings:
     predict: PredictConfig = field(default_factory=PredictConfig)
     infer: InferConfig = field(default_factory=InferConfig)
     decide_rules: str = "map"  # one of DECIDE_RULES
+    decide_window: float = DECIDE_WINDOW  # nats, for decide_rules = "window"
 
     def threshold_for(self, action: str) -> float:
         """The obedience threshold of ``action`` (per-action override, else the default)."""

@@ -22,6 +22,7 @@ from typing import Any
 from ownctl.app.beliefs import belief_sources
 from ownctl.app.context import AppContext, use_case
 from ownctl.app.mindstore import reading
+from ownctl.humanize import plural
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import parse_rule
 from ownctl.logic.vocab import ACTIONS
@@ -52,9 +53,10 @@ def _step(mind: Mind, i: int, step: str, permission_id: int | None,
                 for r in rules]
     p_rules = mind.p_rules(step, i)
     forbidden = mind.forbidden(step, i)
+    sets = mind.deciding_sets(step)
     if given is not None:
         decided_by, p = "permission", float(given.value)
-    elif rules:
+    elif rules or (sets is not None and p_rules > 0.0):
         decided_by, p = "rules", p_rules
     else:
         decided_by, p = "none", 0.0
@@ -69,6 +71,8 @@ def _step(mind: Mind, i: int, step: str, permission_id: int | None,
         "p_rules": p_rules,
         "rules": per_rule,
         "rule_support": _support(mind, i, step, decided_by, per_rule),
+        "decide": mind.settings.decide_rules,
+        "rule_sets": sets,
     }
 
 
@@ -93,13 +97,21 @@ def _reason(name: str, obj: str, step: dict[str, Any]) -> str:
         return f"{step['action']} is {verb} on {obj} by permission {step['permission_id']}"
     if step["decided_by"] == "rules":
         op = ">=" if step["decision"] == "forbidden" else "<"
-        top = max(step["rules"], key=lambda r: r["p"])
-        return (
-            f"the rules of {step['action']} forbid it with p={step['p_forbidden']:.3g} {op} "
-            f"{step['threshold']:g} (strongest: rule {top['id']} '{top['text']}', p={top['p']:.3g})"
-            + uncertain(step)
-        )
+        top = max(step["rules"], key=lambda r: r["p"], default=None)
+        strongest = "" if top is None else f" (strongest: rule {top['id']} '{top['text']}', p={top['p']:.3g})"
+        return (f"the rules of {step['action']} forbid it with p={step['p_forbidden']:.3g} {op} "
+                f"{step['threshold']:g}{rested(step)}{strongest}" + uncertain(step))
     return f"no permission or rule speaks about {name} on {obj}"
+
+
+def rested(step: dict[str, Any]) -> str:
+    """What a rule decision rests on when not the learned rule set alone (``decide.rules``)."""
+    sets = step.get("rule_sets")
+    if sets is None:
+        return ""
+    if step.get("decide") == "window":
+        return f", the mean over {plural(sets, 'near-best rule set')} (decide.rules window)"
+    return f", marginalised over {plural(sets, 'rule set')} (decide.rules posterior)"
 
 
 def uncertain(step: dict[str, Any]) -> str:

@@ -19,7 +19,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ownctl.app.context import AppContext
-from ownctl.app.decide import uncertain
+from ownctl.app.decide import rested, uncertain
 from ownctl.humanize import iso, plural
 from ownctl.logic.rules import ANY, Literal, parse_rule
 
@@ -118,14 +118,16 @@ def _step_sentence(step: dict[str, Any], obj: str) -> str:
     if step["decided_by"] == "rules":
         rules = sorted(step["rules"], key=lambda r: (-r["p"], r["id"]))
         op = ">=" if step["decision"] == "forbidden" else "<"
-        if len(rules) == 1:
+        if len(rules) == 1 and step.get("rule_sets") is None:
             r = rules[0]
             return (f"rule {r['id']} '{r['text']}' holds with p={r['p']:.2g} ({op} {step['threshold']:g})"
                     f"{_literals(r)}; it was {r['origin']}{uncertain(step)}")
         each = "; ".join(f"rule {r['id']} '{r['text']}' p={r['p']:.2g}{_literals(r)} ({r['origin']})"
                          for r in rules)
-        return (f"the rules of {action} together hold with p={step['p_forbidden']:.2g} "
-                f"({op} {step['threshold']:g}): {each}{uncertain(step)}")
+        together = "together hold" if step.get("rule_sets") is None else "forbid it"
+        listed = f": {each}" if each else "; the most probable rule set has no rule"
+        return (f"the rules of {action} {together} with p={step['p_forbidden']:.2g} "
+                f"({op} {step['threshold']:g}){rested(step)}{listed}{uncertain(step)}")
     return f"no permission or rule speaks about {action} on {obj}"
 
 

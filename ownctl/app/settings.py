@@ -4,8 +4,10 @@ Keys: ``threshold`` and ``threshold.ACTION`` (obedience thresholds in [0, 1]), `
 ``frozen.perms`` / ``frozen.rules`` and ``disabled.inference`` / ``disabled.prediction`` (booleans),
 ``learner`` (the rule learner: ``ours`` or ``paper``), ``decide.rules`` (decisions on the most
 probable rule set, ``map``, or on P(forbidden) marginalised over the posterior of rule sets,
-``posterior``), ``ask.min_gain`` (the expected mistakes a question must save before the robot
-asks it during a run, a non-negative number), ``ask.kinds`` (the kinds of question the robot asks
+``posterior``, or on the mean over the rule sets within ``decide.window`` nats of the most
+probable, ``window``), ``decide.window`` (that width, a non-negative number of nats),
+``ask.min_gain`` (the expected mistakes a question must save before the robot asks it during a
+run, a non-negative number), ``ask.kinds`` (the kinds of question the robot asks
 during ``run --ask``: some of act, may, whose, rule), ``ask.temper`` (the power of the rule-set
 posteriors questions are valued on, in (0, 1]), ``ask.read`` (whether questions are valued with
 ownership read through the claim calibration the learner chose, a boolean) and ``ask.ahead`` (how
@@ -25,7 +27,7 @@ from ownctl.config import ASK_KINDS as ASK_KINDS
 from ownctl.config import ASK_MIN_GAIN as ASK_MIN_GAIN
 from ownctl.config import ASK_READ as ASK_READ
 from ownctl.config import ASK_TEMPER as ASK_TEMPER
-from ownctl.config import LearnConfig, Settings
+from ownctl.config import DECIDE_WINDOW, LearnConfig, Settings
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.vocab import ACTIONS
 
@@ -33,9 +35,10 @@ FLAGS = ("frozen.perms", "frozen.rules", "disabled.inference", "disabled.predict
 PROBABILITIES = ("threshold", "trust", *(f"threshold.{a}" for a in ACTIONS))
 LEARNERS = ("ours", "paper")
 ASKING = ("ask.min_gain", "ask.kinds", "ask.temper", "ask.read", "ask.ahead")
-KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", *ASKING)
+KEYS = (*PROBABILITIES, *FLAGS, "learner", "decide.rules", "decide.window", *ASKING)
 DEFAULTS: dict[str, Any] = {"threshold": Settings().threshold, "trust": Settings().trust,
                             "learner": Settings().learn.learner, "decide.rules": Settings().decide_rules,
+                            "decide.window": DECIDE_WINDOW,
                             "ask.min_gain": ASK_MIN_GAIN, "ask.kinds": list(ASK_KINDS),
                             "ask.temper": ASK_TEMPER, "ask.read": ASK_READ, "ask.ahead": ASK_AHEAD}
 TRUE = ("true", "yes", "on", "1")
@@ -106,6 +109,18 @@ def asking(stored: dict[str, Any]) -> tuple[float, tuple[str, ...], float, bool,
             int(stored.get("ask.ahead", ASK_AHEAD)))
 
 
+def window(value: float | str) -> float:
+    """``value`` as the width of the window of near-best rule sets, a finite number of nats of at
+    least 0; BadValue naming it otherwise."""
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        raise BadValue(f"decide.window must be a number of nats of at least 0, got {value!r}") from None
+    if not math.isfinite(number) or number < 0.0:
+        raise BadValue(f"decide.window must be a number of nats of at least 0, got {value!r}")
+    return number
+
+
 def parse_value(key: str, text: str) -> Any:
     """The typed value of ``text`` for ``key``; ``default`` means "remove the override" (None)."""
     check_key(key)
@@ -115,6 +130,8 @@ def parse_value(key: str, text: str) -> Any:
         from ownctl.mind.core import decide_mode  # the Mind's modules only when this key is set
 
         return decide_mode(text)
+    if key == "decide.window":
+        return window(text)
     if key == "ask.min_gain":
         return min_gain(text)
     if key == "ask.kinds":
@@ -140,8 +157,8 @@ def parse_value(key: str, text: str) -> Any:
 
 def effective(stored: dict[str, Any]) -> dict[str, Any]:
     """Every key with its value: stored, else default (per-action thresholds only when set)."""
-    out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k))
-                           for k in ("threshold", "trust", "learner", "decide.rules", *ASKING)}
+    out: dict[str, Any] = {k: stored.get(k, DEFAULTS.get(k)) for k in
+                           ("threshold", "trust", "learner", "decide.rules", "decide.window", *ASKING)}
     out.update({k: bool(stored.get(k, False)) for k in FLAGS})
     out.update({k: v for k, v in sorted(stored.items()) if k.startswith("threshold.")})
     return out
@@ -156,4 +173,5 @@ def to_config(stored: dict[str, Any]) -> Settings:
         trust=float(stored.get("trust", DEFAULTS["trust"])),
         learn=LearnConfig(learner=str(stored.get("learner", DEFAULTS["learner"]))),
         decide_rules=str(stored.get("decide.rules", DEFAULTS["decide.rules"])),
+        decide_window=float(stored.get("decide.window", DEFAULTS["decide.window"])),
     )

@@ -13,7 +13,8 @@ from ownctl.cli.help import Group
 db = Group(help="The store's location and schema revision.")
 config = Group(help="Settings: thresholds, trust, the learner, switches.")
 
-KEY_HELP = "threshold, threshold.ACTION, trust, learner, frozen.*, disabled.*"
+KEY_HELP = ("threshold, threshold.ACTION, trust, learner, decide.rules, decide.window, ask.min_gain, "
+            "ask.kinds, ask.temper, ask.read, ask.ahead, frozen.*, disabled.*")
 
 
 class Frozen(StrEnum):
@@ -107,7 +108,9 @@ def config_set(
     ],
     value: Annotated[
         str,
-        typer.Argument(metavar="VALUE", help="A number in [0, 1], true/false, ours/paper, or 'default'."),
+        typer.Argument(metavar="VALUE", help="A number in [0, 1] (thresholds, trust), true/false, ours/paper "
+                       "(learner), map/posterior/window (decide.rules), a number of nats (decide.window), "
+                       "or 'default'."),
     ],
     json_out: JsonOpt = False,
     quiet: QuietOpt = False,

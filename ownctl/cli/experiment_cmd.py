@@ -15,6 +15,7 @@ import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt, wrote
 from ownctl.cli.help import Group
+from ownctl.config import DECIDE_WINDOW
 from ownctl.humanize import plural
 
 if TYPE_CHECKING:
@@ -45,8 +46,10 @@ LearnerOpt = Annotated[
     str, typer.Option("--learner", metavar="ours|paper", help="Rule learner: ours or paper.")
 ]
 DecideOpt = Annotated[
-    str, typer.Option("--decide", metavar="map|posterior", help="Learned rules decide, and are scored, on "
-                      "the most probable rule set (map) or marginalised over rule sets (posterior; slower).")
+    str, typer.Option("--decide", metavar="map|posterior|window",
+                      help="Learned rules decide, and are scored, on the most probable rule set (map), "
+                      "marginalised over rule sets (posterior; slower) or on the mean over the rule sets "
+                      f"within {DECIDE_WINDOW:g} nats of the most probable (window; slower).")
 ]
 CsvOpt = Annotated[str | None, typer.Option("--csv", metavar="FILE", help="Also write every figure as CSV.")]
 PlotOpt = Annotated[str | None, typer.Option("--plot", metavar="FILE.png", help="Also plot the metrics.")]
@@ -259,7 +262,9 @@ def render(result: ExperimentResult) -> None:
     also = " and the paper" if comparable else " (the paper's values are for its blocks world only)"
     if "families" in result.extra:
         also = " over norm families"
-    mode = "" if result.decide == "map" else ", decisions marginalised over rule sets"
+    modes = {"map": "", "posterior": ", decisions marginalised over rule sets",
+             "window": ", decisions on the near-best rule sets"}
+    mode = modes.get(result.decide, f", decide {result.decide}")
     head = Table(title=f"{exp.title}: ours ({result.learner} learner{mode}, mean±95% CI){also}",
                  caption=f"accuracy, F1 = {exp.headline}: {exp.groups.get(exp.headline, '')}",
                  box=box.SIMPLE_HEAD, collapse_padding=True, pad_edge=False)

@@ -25,7 +25,7 @@ from __future__ import annotations
 import functools
 import itertools
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -119,6 +119,19 @@ class RulePosterior:
             out[lo : lo + part.n] = self.probabilities @ q
         return np.clip(out, 0.0, 1.0)
 
+    def window(self, within: float) -> RulePosterior:
+        """The rule sets whose log posterior is within ``within`` nats of the most probable one, each
+        with the same probability: the sets the permissions cannot tell from the best by a likelihood
+        ratio above e^within, given equal say (decisions ``decide.rules = window``,
+        docs/norm-families.md). ``within`` 0 keeps the exact ties of the most probable set."""
+        if not within >= 0.0:
+            raise ValueError(f"within must be a number of nats of at least 0, got {within!r}")
+        keep = np.flatnonzero(self.log_weights >= self.log_weights.max() - within)
+        lw = self.log_weights[keep]
+        return replace(self, index=self.index[keep], log_weights=lw,
+                       probabilities=np.full(len(keep), 1.0 / len(keep)),
+                       log_evidence=float(np.logaddexp.reduce(lw)))
+
     def support(self, rule: Rule, frame: Frame) -> float:
         """P(the rule set forbids every object ``rule`` forbids, in every ownership world of
         ``frame`` with positive weight): how sure the posterior is of what ``rule`` says, whichever
@@ -132,6 +145,39 @@ class RulePosterior:
         truth = np.stack([*(ev.truth(r)[where] for r in self.rules), np.zeros(len(where[0]), dtype=bool)])
         covered = _unions(truth, self.index).all(axis=1)
         return min(float(self.probabilities[covered].sum()), 1.0)
+
+
+def window_p_forbidden(post: RulePosterior, own: Sequence[Rule], frame: Frame, within: float) -> np.ndarray:
+    """P(the action is forbidden) for every object of ``frame`` under ``decide.rules = window``: the
+    mean over the rule sets within ``within`` nats of the most probable (:meth:`RulePosterior.window`)
+    and the learner's own set ``own`` (its rules with the allow norms subtracted), each set counted
+    once. Where the near-best sets disagree on an object it is forbidden only as far as they agree,
+    which keeps a rule resting on one or two examples from outvoting its equally likely rivals."""
+    near = post.window(within)
+    p = near.p_forbidden(frame)
+    if _has_set(near, own):
+        return p
+    k = len(near.index)
+    out: np.ndarray = (k * p + p_forbidden(list(own), frame)) / (k + 1)
+    return out
+
+
+def window_size(post: RulePosterior, own: Sequence[Rule], within: float) -> int:
+    """How many rule sets :func:`window_p_forbidden` averages over."""
+    near = post.window(within)
+    return len(near.index) + (0 if _has_set(near, own) else 1)
+
+
+def _has_set(post: RulePosterior, own: Sequence[Rule]) -> bool:
+    """Whether some set of ``post``, its allow norms subtracted, is the set ``own``."""
+    mine = frozenset(own)
+    for rules in post.sets:
+        kept = list(rules)
+        for allow in post.allows:
+            kept = subtract(kept, allow)
+        if frozenset(kept) == mine:
+            return True
+    return False
 
 
 @dataclass(frozen=True)

@@ -36,7 +36,6 @@ from ownctl.logic.prob import (
     Worlds,
     each_rule_truth,
     enumerate_worlds,
-    p_forbidden,
     relevant_atoms,
     rule_truth,
 )
@@ -336,11 +335,7 @@ def decisions(mind: Mind, steps: Sequence[str], idx: Sequence[int]) -> np.ndarra
     frame = mind.frame().take(list(idx))
     out = np.zeros(len(idx), dtype=bool)
     for s in steps:
-        if mind.settings.decide_rules == "posterior" and mind.perms[s]:
-            p = mind.rule_posterior(s).p_forbidden(frame)
-        else:
-            p = p_forbidden(mind.rules[s], frame)
-        bad = p >= mind.settings.threshold_for(s)
+        bad = mind.p_rules_on(s, frame) >= mind.settings.threshold_for(s)
         for k, i in enumerate(idx):
             given = mind.permission(s, i)
             if given is not None:

@@ -581,12 +581,31 @@ class Mind:
         return float(self.p_rules_on(action, self.frame_of([self.obj(obj)]))[0])
 
     def p_rules_on(self, action: str, frame: Frame) -> np.ndarray:
-        """P(the action's rules forbid it) for every object of ``frame``: on the learned rule set,
-        or with ``decide_rules = "posterior"`` marginalised over the posterior of rule sets (once
-        the action has permissions)."""
-        if self.settings.decide_rules == "posterior" and self.perms[action]:
-            return self.rule_posterior(action).p_forbidden(frame)
-        return p_forbidden(self.rules[action], frame)
+        """P(the action's rules forbid it) for every object of ``frame``: on the learned rule set;
+        once the action has permissions, with ``decide_rules = "posterior"`` marginalised over the
+        posterior of rule sets, with ``"window"`` the mean over the near-best rule sets
+        (:func:`ownctl.learn.posterior.window_p_forbidden`)."""
+        mode = self.settings.decide_rules
+        if mode == "map" or not self.perms[action]:
+            return p_forbidden(self.rules[action], frame)
+        post = self.rule_posterior(action)
+        if mode == "posterior":
+            return post.p_forbidden(frame)
+        from ownctl.learn.posterior import window_p_forbidden
+
+        return window_p_forbidden(post, self.rules[action], frame, self.settings.decide_window)
+
+    def deciding_sets(self, action: str) -> int | None:
+        """How many rule sets the action's rule decisions rest on when that is not the learned set
+        alone (``decide_rules`` other than ``map``, once the action has permissions), else None."""
+        if self.settings.decide_rules == "map" or not self.perms[action]:
+            return None
+        post = self.rule_posterior(action)
+        if self.settings.decide_rules == "posterior":
+            return int((post.probabilities > 0).sum())
+        from ownctl.learn.posterior import window_size
+
+        return window_size(post, self.rules[action], self.settings.decide_window)
 
     # -- knowledge ---------------------------------------------------------------------------
     def given(self, action: str) -> list[Rule]:

@@ -59,3 +59,35 @@ def test_posterior_decisions_marginalise_over_rule_sets(ctx: AppContext) -> None
     assert on_map["steps"][-1]["p_rules"] != pytest.approx(step["p_rules"], abs=1e-6)
     with pytest.raises(Exception, match="known decision modes: map, posterior"):
         admin.config_set(ctx, "decide.rules", "mode")
+
+
+def test_window_decisions_are_the_mean_over_the_near_best_sets_and_say_so(ctx: AppContext) -> None:
+    from ownctl.learn.posterior import window_p_forbidden, window_size
+    from ownctl.mind.ask import decisions
+
+    instruct.add_permission(ctx, "trash", "o0", 1.0)
+    admin.config_set(ctx, "decide.rules", "window")
+    admin.config_set(ctx, "decide.window", "1.5")
+    report = decide.check(ctx, "trash", "o3", record=False)
+    with ctx.read() as tx:
+        mind = load(tx, ctx.now).mind
+    assert mind.settings.decide_rules == "window" and mind.settings.decide_window == 1.5
+    i = mind.index["o3"]
+    post = mind.rule_posterior("trash")
+    expected = window_p_forbidden(post, mind.rules["trash"], mind.frame().take([i]), 1.5)[0]
+    (step,) = [s for s in report.data["steps"] if s["action"] == "trash"]
+    assert step["p_rules"] == pytest.approx(expected, abs=1e-12)
+    assert step["decide"] == "window" and step["rule_sets"] == window_size(post, mind.rules["trash"], 1.5) > 1
+    text = explain.explain(ctx, "trash", "o3").text
+    if step["decided_by"] == "rules":
+        assert "near-best rule sets" in report.reason and "near-best rule sets" in text
+    # every decision, one implementation: the asking core decides as the Mind does
+    idx = list(range(len(mind.objects)))
+    assert decisions(mind, ["trash"], idx).tolist() == [mind.forbidden("trash", j) for j in idx]
+
+
+@pytest.mark.parametrize("bad", ["-1", "abc", "inf", "nan"])
+def test_a_bad_window_width_is_refused_with_its_value(ctx: AppContext, bad: str) -> None:
+    with pytest.raises(Exception, match=f"decide.window must be a number of nats of at least 0, got '{bad}'"):
+        admin.config_set(ctx, "decide.window", bad)
+    assert admin.config_get(ctx)["decide.window"] == 2.0

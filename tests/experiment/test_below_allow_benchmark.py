@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
 from types import ModuleType
 
 import numpy as np
@@ -68,3 +69,12 @@ def test_paired_is_ours_minus_probfoils_cached_scores() -> None:
     got = bench.paired(cache, "none", 1e-6, 1)["noiseless 0.25"]
     assert got["families"] == 1
     assert abs(got["accuracy"][0] - (acc - 0.8)) < 1e-12 and abs(got["f1"][0] - (f1 - 0.5)) < 1e-12
+
+
+def test_the_mean_is_ownctls_window_decision() -> None:
+    setup, mind = _trial(1, 11)
+    frame = setup.true_frame
+    got = _benchmark().cautious(mind, "collect", frame, "mean", 0.5)
+    windowed = taught_mind(setup, decide="window")
+    windowed.settings = replace(windowed.settings, decide_window=0.5)
+    assert np.allclose(got, windowed.p_rules_on("collect", frame), atol=1e-12)
