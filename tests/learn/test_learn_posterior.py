@@ -15,7 +15,14 @@ from ownctl.config import LearnConfig
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import subtract
 from ownctl.learn.model import model_for
-from ownctl.learn.posterior import RuleSpace, every_rule, posterior, rule_implies, rule_posterior
+from ownctl.learn.posterior import (
+    RuleSpace,
+    every_rule,
+    implication_matrix,
+    posterior,
+    rule_implies,
+    rule_posterior,
+)
 from ownctl.logic.frame import Frame
 from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import ANY, Rule, parse_rule
@@ -165,3 +172,13 @@ def test_support_is_the_mass_of_the_sets_that_forbid_all_the_rule_forbids(seed: 
         expected = sum(p for rules, p in zip(post.sets, post.probabilities, strict=True)
                        if not (mine & ~ev.union(rules)).any())
         assert post.support(rule, probe) == pytest.approx(min(expected, 1.0), abs=1e-12)
+
+
+@pytest.mark.parametrize("length", [1, 2, 3])
+def test_the_implication_matrix_is_rule_implies_pair_by_pair(length: int) -> None:
+    pool = every_rule("trash", Vocabulary(AGENTS, ("blue", "red", "green"), ("desk", "home")).atoms(), length)
+    pool = pool[:: max(1, len(pool) // 60)]  # every rule of length 1; a spread of the longer ones
+    got = implication_matrix(pool)
+    expected = [[rule_implies(a, b) for b in pool] for a in pool]
+    assert got.tolist() == expected
+    assert implication_matrix([Rule("trash")]).tolist() == [[True]]
