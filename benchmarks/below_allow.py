@@ -43,7 +43,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
-from ownctl.experiment.metrics import ci95, rule_scores  # noqa: E402
+from ownctl.experiment.metrics import ci95, decision_scores, rule_scores  # noqa: E402
 from ownctl.experiment.norms import NORM_CONDITIONS, norms_setup, taught_mind  # noqa: E402
 from ownctl.experiment.runner import trial_rng  # noqa: E402
 from ownctl.learn.posterior import window_p_forbidden  # noqa: E402
@@ -85,7 +85,7 @@ def cell(family: int, c: int, trials: int, ties: str = "none", within: float = 1
         setup = norms_setup(make, NORM_CONDITIONS[c], trial_rng(0, c, t, None if family < 0 else family))
         mind = taught_mind(setup)
         norms = list(setup.world.norms)
-        scores = {a: rule_scores(setup.answers[a], cautious(mind, a, setup.true_frame, ties, within))
+        scores = {a: decision_scores(setup.answers[a], cautious(mind, a, setup.true_frame, ties, within))
                   for a in setup.rules}
         base = {a: rule_scores(setup.answers[a], np.zeros(len(setup.world.objects))) for a in setup.rules}
         ours.append(float(np.mean([s.accuracy for s in scores.values()])))
@@ -124,7 +124,7 @@ def _trial_scores(args: tuple[int, int, int, str, float]) -> tuple[float, float]
     family, c, t, ties, within = args
     setup = norms_setup(norm_family(family), NORM_CONDITIONS[c], trial_rng(0, c, t, family))
     mind = taught_mind(setup)
-    scores = [rule_scores(setup.answers[a], cautious(mind, a, setup.true_frame, ties, within))
+    scores = [decision_scores(setup.answers[a], cautious(mind, a, setup.true_frame, ties, within))
               for a in setup.rules]
     return float(np.mean([x.accuracy for x in scores])), float(np.mean([x.f1 for x in scores]))
 

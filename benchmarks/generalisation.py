@@ -5,7 +5,7 @@ allowing everything, on the very same trials.
     python benchmarks/generalisation.py [--families 100] [--trials 20] [--jobs 2 | --scheduler ADDRESS]
         [--probfoil-families 20] [--probfoil-trials 10] [--probfoil-noisy-families 10]
         [--probfoil-noisy-trials 5] [--probfoil-budget SECONDS] [--no-probfoil] [--json]
-        [--decide map|posterior] [--paper]
+        [--decide map|posterior|window] [--paper]
 
 Trials are drawn by ownctl's own code (``ownctl.experiment.norms.norms_setup``): trial ``t`` of
 condition ``c`` of family ``s`` uses ``[seed, s, c, t]``, exactly as ``ownctl experiment norms
@@ -50,6 +50,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT))
 
+from ownctl.config import DECIDE_RULES  # noqa: E402
 from ownctl.errors import OwnctlError  # noqa: E402
 from ownctl.experiment.cluster import executor  # noqa: E402
 from ownctl.experiment.metrics import ci95, rule_scores  # noqa: E402
@@ -198,7 +199,7 @@ def key(seed: int, c: int, t: int) -> str:
 # -- ours, the paper's learner, allowing everything ------------------------------------------------
 def run_ours(unit: tuple[int, int, int, str]) -> tuple[tuple[int, int, int], dict[str, list[float]]]:
     """Mean accuracy and F1 over actions of ours, the paper learner and allow-all on one trial
-    (``unit``: family seed, condition, trial, and how learned rules decide: map or posterior)."""
+    (``unit``: family seed, condition, trial, and how learned rules decide: ``decide.rules``)."""
     seed, c, t, decide = unit
     family = world_of(seed)
     out = {}
@@ -237,9 +238,10 @@ def main() -> None:
     parser.add_argument("--trials", type=int, default=20)
     parser.add_argument("--family-seed", type=int, default=EVALUATION_SEEDS.start)
     parser.add_argument("--jobs", type=int, default=2)
-    parser.add_argument("--decide", choices=("map", "posterior"), default="map",
-                        help="ours and the paper learner decide on the most probable rule set, or "
-                        "marginalised over the rule-set posterior (slower)")
+    parser.add_argument("--decide", choices=DECIDE_RULES, default="map",
+                        help="ours and the paper learner decide on the most probable rule set, "
+                        "marginalised over the rule-set posterior, or on the mean over the near-best "
+                        "rule sets (decide.rules; the last two slower)")
     parser.add_argument("--scheduler", metavar="ADDRESS",
                         help="run ours, the paper's learner and allow-all on this Dask cluster (tcp://host:8786)")
     parser.add_argument("--probfoil-families", type=int, default=20)

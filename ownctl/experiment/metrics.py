@@ -41,6 +41,15 @@ def rule_scores(actual: np.ndarray, learned: np.ndarray) -> Scores:
     return _prf(correct, actual >= 0.5, learned >= 0.5)
 
 
+def decision_scores(actual: np.ndarray, p_forbidden: np.ndarray, threshold: float = 0.5) -> Scores:
+    """Rules scored on the decisions they make: an object is refused iff ``p_forbidden`` is at least
+    the obedience ``threshold``. A probability of exactly 0.5 thus counts as the refusal it causes;
+    :func:`rule_scores`, the paper's measure, counts it correct whatever the truth, which would reward
+    a decision rule for landing on 0.5 (docs/norm-families.md)."""
+    decided = (np.asarray(p_forbidden, float) >= threshold).astype(float)
+    return rule_scores(actual, decided)
+
+
 def ownership_scores(truth: np.ndarray, predicted: np.ndarray) -> Scores:
     """Ownership: correct only when (t - 0.5)(p - 0.5) > 0 (strict: 0.5 is always wrong)."""
     truth, predicted = np.asarray(truth, float), np.asarray(predicted, float)

@@ -21,7 +21,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ownctl.config import LearnConfig, Settings
-from ownctl.experiment.metrics import Scores, rule_scores
+from ownctl.experiment.metrics import Scores, decision_scores
 from ownctl.experiment.result import TrialResult
 from ownctl.experiment.truth import true_rules
 from ownctl.logic.frame import Frame
@@ -116,14 +116,16 @@ def taught_mind(setup: NormsSetup, learner: str = "ours", decide: str = "map", t
 
 def norms_trial(make_world: WorldFactory, cond: NormCondition, learner: str,
                 rng: np.random.Generator, decide: str = "map", together: bool = True) -> dict[str, Scores]:
-    """One trial of one condition; per-action scores of the learned rules (``decide``: scored on the
-    most probable rule set, ``map``, or marginalised over rule sets, ``posterior``; ``together``:
-    as :func:`taught_mind`). The baseline condition teaches nothing (allowing everything)."""
+    """One trial of one condition; per-action scores of the decisions the learned rules make on
+    every object (refused iff P(forbidden) reaches the threshold, :func:`decision_scores`;
+    ``decide``: ``decide.rules``; ``together``: as :func:`taught_mind`). The baseline condition
+    teaches nothing (allowing everything)."""
     setup = norms_setup(make_world, cond, rng)
     empty = replace(setup, chosen=setup.chosen[:0]) if cond.baseline else setup
     mind = taught_mind(empty, learner, decide, together)
     frame = setup.true_frame
-    return {a: rule_scores(setup.answers[a], mind.p_rules_on(a, frame)) for a in setup.rules}
+    return {a: decision_scores(setup.answers[a], mind.p_rules_on(a, frame), mind.settings.threshold_for(a))
+            for a in setup.rules}
 
 
 def norms_result(make_world: WorldFactory, cond: NormCondition, learner: str,

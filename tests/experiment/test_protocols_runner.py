@@ -107,8 +107,8 @@ def test_bad_settings_are_user_errors() -> None:
 
 
 def test_posterior_decisions_score_the_marginal_over_rule_sets() -> None:
-    """``decide="posterior"`` scores each action on P(forbidden) marginalised over the rule-set
-    posterior of the very Mind the trial taught, on the objects' true owners: recomputed here."""
+    """``decide="posterior"`` scores each action's decisions on P(forbidden) marginalised over the
+    rule-set posterior of the very Mind the trial taught, on the objects' true owners: recomputed here."""
     from ownctl.config import LearnConfig, Settings
     from ownctl.experiment.metrics import rule_scores
     from ownctl.experiment.norms import norms_setup, norms_trial
@@ -127,5 +127,18 @@ def test_posterior_decisions_score_the_marginal_over_rule_sets() -> None:
     for action in setup.rules:
         p = mind.rule_posterior(action).p_forbidden(setup.true_frame)
         uncertain += int(((p > 0.01) & (p < 0.99)).any())
-        assert got[action] == rule_scores(setup.answers[action], p)
+        assert got[action] == rule_scores(setup.answers[action], (p >= 0.5).astype(float))
     assert uncertain  # the marginal is not a single rule set's 0/1 on this trial
+
+
+def test_rules_are_scored_on_the_decisions_they_make() -> None:
+    """Exactly 0.5 is a refusal (the threshold is reached): right where the action is forbidden,
+    wrong where it is allowed, unlike the paper's measure, which counts it right either way."""
+    from ownctl.experiment.metrics import decision_scores, rule_scores
+
+    actual = np.array([1.0, 0.0, 0.0, 1.0])
+    p = np.array([0.5, 0.5, 0.2, 0.9])
+    assert rule_scores(actual, p).accuracy == 1.0
+    assert decision_scores(actual, p).accuracy == 0.75
+    assert decision_scores(actual, p, threshold=0.6).accuracy == 0.75  # 0.5 allowed: the first wrong
+    assert decision_scores(actual, np.array([1.0, 0.0, 0.0, 1.0])) == rule_scores(actual, actual)
