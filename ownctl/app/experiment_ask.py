@@ -15,13 +15,13 @@ from typing import Any
 def run(budgets: str, trials: int, seed: int, jobs: int, task: str, plot_path: str | Path | None = None,
         min_gain: float | None = None, progress: Callable[[int, int], None] | None = None,
         kinds: str | None = None, temper: float | None = None, read: bool | None = None,
-        ahead: int | None = None) -> dict[str, Any]:
+        ahead: int | None = None, decide: str = "map") -> dict[str, Any]:
     """The experiment's JSON document (and the plot, if asked for); trials and jobs are checked by
     :func:`ownctl.experiment.asking.ask_experiment`, the plot's folder, ``kinds`` ("act,may,whose")
     and ``temper`` (in (0, 1]; default: the task asker's) before any work; ``read``: whether ours
     values questions with ownership read as the learner reads it (default: the task asker's);
     ``ahead``: how many of ours' best questions are valued again with the look-ahead (a whole number,
-    checked before any work; default: the task asker's)."""
+    checked before any work; default: the task asker's); ``decide``: ``decide.rules`` of every robot."""
     from ownctl.app.experiment import check_folder, task_conditions
     from ownctl.app.settings import ASK_MIN_GAIN
     from ownctl.app.settings import min_gain as check_gain
@@ -44,7 +44,7 @@ def run(budgets: str, trials: int, seed: int, jobs: int, task: str, plot_path: s
     power = TASK_TEMPER if temper is None else check_temper(temper)
     looked = TASK_AHEAD if ahead is None else check_ahead(ahead)
     result = ask_experiment(chosen, trials, seed, jobs, names, gain, progress, chosen_kinds, power,
-                            TASK_READ if read is None else read, looked)
+                            TASK_READ if read is None else read, looked, decide)
     if plot_path is not None:
         from ownctl.app.experiment_plot import write_ask_plot
 

@@ -14,7 +14,8 @@ from ownctl.errors import BadValue
 
 def run_ask(budgets: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
             json_out: bool, csv: str | None, plot: str | None, quiet: bool, kinds: str | None = None,
-            temper: float | None = None, read: bool | None = None, ahead: int | None = None) -> None:
+            temper: float | None = None, read: bool | None = None, ahead: int | None = None,
+            decide: str = "map") -> None:
     """Run the asking experiment and print its tables or one JSON document."""
     from ownctl.app import experiment_ask
 
@@ -24,7 +25,7 @@ def run_ask(budgets: str, trials: int, seed: int, jobs: int, world: str | None, 
     if learner != "ours":
         raise BadValue(f"--ask runs the default learner only, got --learner {learner!r}", ("ours",))
     result = experiment_ask.run(budgets, trials, seed, jobs, task, plot, kinds=kinds, temper=temper,
-                                read=read, ahead=ahead)
+                                read=read, ahead=ahead, decide=decide)
     if json_out:
         typer.echo(json.dumps(result, ensure_ascii=False))
     elif not quiet:

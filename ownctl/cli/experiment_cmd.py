@@ -183,14 +183,9 @@ def task(
     if ask is not None:
         from ownctl.cli.experiment_ask_cmd import run_ask
 
-        if decide != "map":
-            from ownctl.errors import BadValue
-
-            raise BadValue(f"--decide {decide} applies only without --ask: the asking experiment's "
-                           "robots decide on the most probable rule set (--decide map)")
 
         run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, ask_kinds,
-                ask_temper, ask_read, ask_ahead)
+                ask_temper, ask_read, ask_ahead, decide)
         return
     for flag, value in (("--ask-kinds", ask_kinds), ("--ask-temper", ask_temper),
                         ("--ask-read/--ask-as-given", ask_read), ("--ask-ahead", ask_ahead)):

@@ -58,6 +58,7 @@ from ownctl.mind.ask import (
     ownership_entropy,
     worth_asking,
 )
+from ownctl.mind.core import decide_mode
 from ownctl.world.generator import paper_blocks_world
 from ownctl.world.model import World
 
@@ -227,7 +228,8 @@ class Policy:
     ask, the power of the rule-set posteriors it values them on, whether it values permission
     questions on the decisions up to their object (``taught``), whether the truth reads
     ownership as the learner does (``read``) and how many of its best questions it values again
-    with the look-ahead (``ahead``; docs/asking.md, section 4)."""
+    with the look-ahead (``ahead``; docs/asking.md, section 4); ``decide``: how every robot's learned
+    rules decide (``decide.rules``)."""
 
     min_gain: float = DEFAULT_MIN_GAIN
     kinds: tuple[str, ...] = TASK_KINDS
@@ -235,8 +237,10 @@ class Policy:
     taught: bool = False
     read: bool = TASK_READ
     ahead: int = TASK_AHEAD
+    decide: str = "map"
 
     def __post_init__(self) -> None:
+        decide_mode(self.decide)
         check_kinds(self.kinds)
         check_temper(self.temper)
         check_ahead(self.ahead)
@@ -246,8 +250,8 @@ def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ou
     """(mistakes, questions asked) of one run; the world is Table 3's trial ``[seed, c, t]``."""
     cond = TASK_CONDITIONS[unit.condition]
     world = paper_blocks_world(np.random.default_rng([seed, unit.condition, unit.trial]))
-    mind = Mind(world.agents, list(world.objects), world.areas, Settings(learn=LearnConfig(learner=learner)),
-                Switches())
+    settings = Settings(learn=LearnConfig(learner=learner), decide_rules=policy.decide)
+    mind = Mind(world.agents, list(world.objects), world.areas, settings, Switches())
     asker = QuestionAsker(object_steps(get_task(cond.task).action), unit.strategy, unit.budget,
                           policy.min_gain, OracleAnswers(world),
                           np.random.default_rng([seed, unit.condition, unit.trial, 1]), policy.kinds,
@@ -283,8 +287,8 @@ def parse_budgets(text: str) -> tuple[int, ...]:
 def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int = 1,
                    tasks: Sequence[str] = ("collectAll", "trashAll"), min_gain: float = DEFAULT_MIN_GAIN,
                    progress: Callable[[int, int], None] | None = None, kinds: Sequence[str] = TASK_KINDS,
-                   temper: float = TASK_TEMPER, read: bool = TASK_READ, ahead: int = TASK_AHEAD
-                   ) -> dict[str, Any]:
+                   temper: float = TASK_TEMPER, read: bool = TASK_READ, ahead: int = TASK_AHEAD,
+                   decide: str = "map") -> dict[str, Any]:
     """Mistakes per task and questions asked for every strategy and budget, on the same seeds.
 
     Budget 0 is one run per trial shared by the strategies (Table 3 itself). Returns the JSON
@@ -292,7 +296,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     mean number of questions asked, and the paired difference ours - entropy per budget.
     """
     check_settings(trials, jobs, "ours")
-    policy = Policy(min_gain, tuple(kinds), temper, read=read, ahead=ahead)
+    policy = Policy(min_gain, tuple(kinds), temper, read=read, ahead=ahead, decide=decide)
     names = [c.name for c in TASK_CONDITIONS]
     conds = [names.index(t) for t in tasks]
     units = [Unit(c, t, s, b) for c in conds for t in range(trials) for b in budgets
@@ -339,6 +343,6 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     return {"experiment": "task-ask", "trials": trials, "seed": seed, "jobs": jobs,
             "budgets": list(budgets), "strategies": list(STRATEGIES), "min_gain": min_gain,
             "kinds": list(policy.kinds), "temper": policy.temper, "read": policy.read,
-            "ahead": policy.ahead, "tasks": results,
+            "ahead": policy.ahead, "decide": policy.decide, "tasks": results,
             "world": "paper blocks world (Table 3's trials: budget 0 is Table 3)",
             "seconds": time.perf_counter() - start}

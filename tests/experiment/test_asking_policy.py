@@ -116,3 +116,21 @@ def test_ours_asks_the_best_question_looking_ahead() -> None:
     asker.before(mind, 1, remaining)
     assert [a.question for a in asker.asked] == [want.question]
     assert asker.asked[0].gain == pytest.approx(want.gain, abs=1e-12)
+
+
+@pytest.mark.parametrize("decide", ["map", "window"])
+def test_budget_zero_is_table_3s_trial_under_any_decision_mode(decide: str) -> None:
+    """With no question the asking run is Table 3's trial [seed, c, t], decided as ``decide`` says."""
+    from ownctl.experiment.asking import Unit, ask_run
+    from ownctl.experiment.online import TASK_CONDITIONS, task_trial
+
+    seed, c, t = 3, 1, 2
+    mistakes, asked = ask_run(Unit(c, t, "ours", 0), seed, Policy(decide=decide))
+    rng = np.random.default_rng([seed, c, t])
+    table3 = task_trial(paper_blocks_world, TASK_CONDITIONS[c], "ours", rng, decide)
+    assert asked == 0 and mistakes == table3.counts["mistakes"] > 0
+
+
+def test_an_unknown_decision_mode_is_refused() -> None:
+    with pytest.raises(UnknownName, match="known decision modes: map, posterior, window"):
+        Policy(decide="vote")

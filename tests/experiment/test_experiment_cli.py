@@ -67,7 +67,7 @@ def test_quiet_prints_nothing() -> None:
         (["norms", "--learner", "foil"], "unknown learner 'foil'; known learners: ours, paper"),
         (["task", "--decide", "vote"],
          "unknown decision mode 'vote'; known decision modes: map, posterior, window"),
-        (["task", "--ask", "1", "--decide", "window"], "--decide window applies only without --ask"),
+        (["task", "--ask", "1", "--decide", "vote"], "unknown decision mode 'vote'"),
         (["norms", "--trials", "0"], "trials must be at least 1"),
         (["norms", "--jobs", "0"], "jobs must be at least 1"),
         (["task", "--task", "tidyAll"], "unknown task 'tidyAll'"),
