@@ -63,15 +63,20 @@ def probability(what: str, value: float | str) -> float:
     return number
 
 
-def min_gain(value: float | str) -> float:
-    """``value`` as a non-negative number of mistakes; BadValue naming ask.min_gain otherwise."""
+def _non_negative(value: float | str, demand: str) -> float:
+    """``value`` as a finite number of at least 0; BadValue "``demand``, got VALUE" otherwise."""
     try:
         number = float(value)
     except (TypeError, ValueError):
-        raise BadValue(f"ask.min_gain must be a non-negative number, got {value!r}") from None
-    if math.isnan(number) or math.isinf(number) or number < 0:
-        raise BadValue(f"ask.min_gain must be a non-negative number, got {value!r}")
+        raise BadValue(f"{demand}, got {value!r}") from None
+    if not math.isfinite(number) or number < 0:
+        raise BadValue(f"{demand}, got {value!r}")
     return number
+
+
+def min_gain(value: float | str) -> float:
+    """``value`` as a non-negative number of mistakes; BadValue naming ask.min_gain otherwise."""
+    return _non_negative(value, "ask.min_gain must be a non-negative number")
 
 
 def temper(value: float | str) -> float:
@@ -112,13 +117,7 @@ def asking(stored: dict[str, Any]) -> tuple[float, tuple[str, ...], float, bool,
 def window(value: float | str) -> float:
     """``value`` as the width of the window of near-best rule sets, a finite number of nats of at
     least 0; BadValue naming it otherwise."""
-    try:
-        number = float(value)
-    except (TypeError, ValueError):
-        raise BadValue(f"decide.window must be a number of nats of at least 0, got {value!r}") from None
-    if not math.isfinite(number) or number < 0.0:
-        raise BadValue(f"decide.window must be a number of nats of at least 0, got {value!r}")
-    return number
+    return _non_negative(value, "decide.window must be a number of nats of at least 0")
 
 
 def parse_value(key: str, text: str) -> Any:

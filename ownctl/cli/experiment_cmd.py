@@ -183,7 +183,6 @@ def task(
     if ask is not None:
         from ownctl.cli.experiment_ask_cmd import run_ask
 
-
         run_ask(ask, trials, seed, jobs, world, learner, which, json_out, csv, plot, quiet, ask_kinds,
                 ask_temper, ask_read, ask_ahead, decide)
         return

@@ -585,20 +585,23 @@ class Mind:
         once the action has permissions, with ``decide_rules = "posterior"`` marginalised over the
         posterior of rule sets, with ``"window"`` the mean over the near-best rule sets
         (:func:`ownctl.learn.posterior.window_p_forbidden`)."""
-        mode = self.settings.decide_rules
-        if mode == "map" or not self.perms[action]:
+        if self._rules_alone(action):
             return p_forbidden(self.rules[action], frame)
         post = self.rule_posterior(action)
-        if mode == "posterior":
+        if self.settings.decide_rules == "posterior":
             return post.p_forbidden(frame)
         from ownctl.learn.posterior import window_p_forbidden
 
         return window_p_forbidden(post, self.rules[action], frame, self.settings.decide_window)
 
+    def _rules_alone(self, action: str) -> bool:
+        """Whether the learned rule set alone decides the action (``map``, or no permissions yet)."""
+        return self.settings.decide_rules == "map" or not self.perms[action]
+
     def deciding_sets(self, action: str) -> int | None:
         """How many rule sets the action's rule decisions rest on when that is not the learned set
         alone (``decide_rules`` other than ``map``, once the action has permissions), else None."""
-        if self.settings.decide_rules == "map" or not self.perms[action]:
+        if self._rules_alone(action):
             return None
         post = self.rule_posterior(action)
         if self.settings.decide_rules == "posterior":
