@@ -29,6 +29,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from ownctl.config import LearnConfig
+from ownctl.learn.distinct import distinct_rows, distinct_unions
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import calibrated_inducer, learning_inputs, subtract
 from ownctl.learn.model import Model, compatible, extensions, literal_list, model_for
@@ -114,8 +115,9 @@ class RulePosterior:
             ev = Evidence(part, np.zeros(part.n))
             shape = ev.worlds.weights.shape
             truth = np.stack([*(ev.truth(r) for r in self.rules), np.zeros(shape, dtype=bool)])  # -1: none
-            q = np.clip((_unions(truth, self.index) * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
-            out[lo : lo + part.n] = self.probabilities @ q
+            joint, which = distinct_unions(truth, self.index)
+            q = np.clip((joint * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
+            out[lo : lo + part.n] = self.probabilities @ q[which]  # summed set by set, as decided
         return np.clip(out, 0.0, 1.0)
 
     def window(self, within: float) -> RulePosterior:
@@ -142,7 +144,8 @@ class RulePosterior:
             return min(float(self.probabilities.sum()), 1.0)
         where = np.nonzero(mine)  # the (world, object) cells the rule holds in
         truth = np.stack([*(ev.truth(r)[where] for r in self.rules), np.zeros(len(where[0]), dtype=bool)])
-        covered = _unions(truth, self.index).all(axis=1)
+        joint, which = distinct_unions(truth, self.index)
+        covered: np.ndarray = np.asarray(joint.all(axis=1))[which]
         return min(float(self.probabilities[covered].sum()), 1.0)
 
 
@@ -236,15 +239,20 @@ def _sets(pool: tuple[Rule, ...], max_rules: int) -> np.ndarray:
 def every_rule(action: str, atoms: Sequence[Literal], max_length: int) -> tuple[Rule, ...]:
     """Every satisfiable rule without implied literals over ``atoms``, up to ``max_length`` literals,
     shortest first, then in canonical order."""
-    return _every_rule(action, tuple(atoms), max_length)[0]
+    lits = literal_list(tuple(atoms))
+    return tuple(_rule_at(action, lits, row) for row in _every_rule(tuple(atoms), max_length))
+
+
+def _rule_at(action: str, lits: Sequence[Literal], row: np.ndarray) -> Rule:
+    """The rule whose literals are ``lits[row]`` (``row`` padded with -1)."""
+    return Rule(action, tuple(lits[x] for x in row.tolist() if x >= 0))
 
 
 @functools.lru_cache(maxsize=256)
-def _every_rule(action: str, atoms: tuple[Literal, ...], max_length: int
-                ) -> tuple[tuple[Rule, ...], np.ndarray]:
-    """:func:`every_rule` and each rule's literals as indices into ``literal_list(atoms)``, padded
-    with -1 to ``max_length`` columns (made once per vocabulary)."""
-    lits = literal_list(atoms)
+def _every_rule(atoms: tuple[Literal, ...], max_length: int) -> np.ndarray:
+    """Each rule of :func:`every_rule` (of any action) as the indices of its literals in
+    ``literal_list(atoms)``, padded with -1 to ``max_length`` columns (made once per vocabulary;
+    the rules themselves are made only for the few that are chosen)."""
     ok = compatible(atoms)
     out: list[tuple[int, ...]] = [()]
     level: list[tuple[int, ...]] = [()]
@@ -255,7 +263,7 @@ def _every_rule(action: str, atoms: tuple[Literal, ...], max_length: int
     for k, s in enumerate(out):
         index[k, : len(s)] = s
     index.setflags(write=False)
-    return tuple(Rule(action, tuple(lits[x] for x in s)) for s in out), index
+    return index
 
 
 def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray) -> np.ndarray:
@@ -268,23 +276,14 @@ def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray)
         return prior
     truth = np.stack([*(ev.truth(r)[wi, ni] for r in space.pool), np.zeros(len(ni), dtype=bool)])
     base = ev.union(space.given)[wi, ni]
-    out = np.empty(len(sets))
-    block = max(1, (1 << 22) // len(ni))  # sets per block, to bound memory
-    for start in range(0, len(sets), block):
-        index = sets[start : start + block]
-        q = ev.pair_prob(_unions(truth, index) | base)
-        out[start : start + len(index)] = -model.nll_terms(ev.t, q).sum(axis=-1)
-    total: np.ndarray = out + prior
+    joint, which = distinct_unions(truth, sets)  # each distinct disjunction's likelihood once
+    out = np.empty(len(joint))
+    block = max(1, (1 << 22) // len(ni))  # disjunctions per block, to bound memory
+    for start in range(0, len(joint), block):
+        q = ev.pair_prob(joint[start : start + block] | base)
+        out[start : start + block] = -model.nll_terms(ev.t, q).sum(axis=-1)
+    total: np.ndarray = out[which] + prior
     return total
-
-
-def _unions(truth: np.ndarray, index: np.ndarray) -> np.ndarray:
-    """(K, ...) disjunction of the rows ``index[k]`` of ``truth``, whose last row is all false (so
-    that -1 pads a smaller set)."""
-    out = np.zeros((len(index), *truth.shape[1:]), dtype=bool)
-    for c in range(index.shape[1]):
-        out |= truth[index[:, c]]
-    return out
 
 
 def posterior(ev: Evidence, action: str, space: RuleSpace, model: Model,
@@ -316,27 +315,28 @@ def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: 
     ``cells`` truth values at a time, so the work stays bounded however many agents a store knows."""
     named = set(ev.worlds.atoms)
     kept = tuple(a for a in atoms if a.pred != "ownedBy" or a.arg == ANY or a.arg in named)
-    pool, index = _every_rule(action, kept, max_length)
+    index = _every_rule(kept, max_length)
     lits = literal_list(kept)
     negated = np.r_[np.arange(len(lits)) % 2, 0]
     lengths = (index >= 0).sum(axis=1)
     costs = (np.array([model.cost(n) for n in range(max_length + 1)])[lengths]
              + model.negation_cost * negated[index].sum(axis=1))
     contexts = [()] + [tuple(x for x in around if x != r) for r in around]
-    gains = np.zeros((len(contexts), len(pool)))
+    gains = np.zeros((len(contexts), len(index)))
     wi, ni, _, _ = ev.pairs  # truth is kept only over the positive-weight pairs
     if len(ni):
         table = np.concatenate([ev.pair_literals(lits), np.ones((1, len(ni)), dtype=bool)])  # -1: true
         bases = [ev.union(context)[wi, ni] for context in contexts]
         block = max(1, cells // len(ni))
-        for lo in range(0, len(pool), block):
+        for lo in range(0, len(index), block):
             rows = index[lo : lo + block]
             truth = table[rows[:, 0]]
             for c in range(1, rows.shape[1]):
                 truth = truth & table[rows[:, c]]
+            first, which = distinct_rows(truth)  # each distinct truth scored once
             for k, base in enumerate(bases):
-                q = ev.pair_prob(truth | base[None])
-                gains[k, lo : lo + len(rows)] = model.nll_terms(ev.t, q).sum(axis=-1)
+                q = ev.pair_prob(truth[first] | base[None])
+                gains[k, lo : lo + len(rows)] = model.nll_terms(ev.t, q).sum(axis=-1)[which]
     gains += costs[None, :]
     chosen: dict[Rule, None] = {r: None for r in around}
     per = max(1, size // len(contexts))
@@ -345,8 +345,9 @@ def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: 
         for k in np.argsort(gain, kind="stable"):
             if taken >= per:
                 break
-            if pool[k] not in chosen:
-                chosen[pool[k]] = None
+            rule = _rule_at(action, lits, index[k])
+            if rule not in chosen:
+                chosen[rule] = None
                 taken += 1
     return tuple(chosen)
 
