@@ -45,7 +45,7 @@ def plain_mean(sets: list[tuple[Rule, ...]], allows: tuple[Rule, ...], own: tupl
 
 
 @pytest.mark.parametrize("seed", range(6))
-@pytest.mark.parametrize("within", [0.0, 0.7, 2.0, 1e9])
+@pytest.mark.parametrize("within", [0.0, 0.7, 2.0, pytest.param(1e9, marks=pytest.mark.slow)])  # 1e9: all
 def test_the_window_is_the_plain_mean_over_the_near_best_sets(seed: int, within: float) -> None:
     frame, values = case(seed)
     allows = (parse_rule("forbid trash if isColored blue"),) if seed % 3 == 2 else ()
