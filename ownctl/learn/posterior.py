@@ -114,11 +114,22 @@ class RulePosterior:
             part = frame.take(np.arange(lo, min(frame.n, lo + step)))
             ev = Evidence(part, np.zeros(part.n))
             shape = ev.worlds.weights.shape
-            truth = np.stack([*(ev.truth(r) for r in self.rules), np.zeros(shape, dtype=bool)])  # -1: none
-            joint, which = distinct_unions(truth, self.index)
+            used, index = self._used()
+            none = np.zeros(shape, dtype=bool)  # -1 pads
+            truth = np.stack([*(ev.truth(self.rules[k]) for k in used), none])
+            joint, which = distinct_unions(truth, index)
             q = np.clip((joint * ev.worlds.weights).sum(axis=-2), 0.0, 1.0)
             out[lo : lo + part.n] = self.probabilities @ q[which]  # summed set by set, as decided
         return np.clip(out, 0.0, 1.0)
+
+    def _used(self) -> tuple[list[int], np.ndarray]:
+        """The rules some set holds (indices into ``rules``, ascending) and ``index`` renumbered
+        into that list (-1 still pads): a window holds a few sets of a few rules, and the truth of
+        the others need not be computed."""
+        used = np.unique(self.index[self.index >= 0])
+        at = np.full(len(self.rules) + 1, -1, dtype=np.int64)
+        at[used] = np.arange(len(used))
+        return used.tolist(), at[self.index]
 
     def window(self, within: float) -> RulePosterior:
         """The rule sets whose log posterior is within ``within`` nats of the most probable one, each
@@ -143,8 +154,10 @@ class RulePosterior:
         if not mine.any():
             return min(float(self.probabilities.sum()), 1.0)
         where = np.nonzero(mine)  # the (world, object) cells the rule holds in
-        truth = np.stack([*(ev.truth(r)[where] for r in self.rules), np.zeros(len(where[0]), dtype=bool)])
-        joint, which = distinct_unions(truth, self.index)
+        used, index = self._used()
+        none = np.zeros(len(where[0]), dtype=bool)
+        truth = np.stack([*(ev.truth(self.rules[k])[where] for k in used), none])
+        joint, which = distinct_unions(truth, index)
         covered: np.ndarray = np.asarray(joint.all(axis=1))[which]
         return min(float(self.probabilities[covered].sum()), 1.0)
 
@@ -249,6 +262,13 @@ def _rule_at(action: str, lits: Sequence[Literal], row: np.ndarray) -> Rule:
 
 
 @functools.lru_cache(maxsize=256)
+def _made(action: str, atoms: tuple[Literal, ...], max_length: int) -> dict[int, Rule]:
+    """The rules of ``action`` made so far from the rows of ``_every_rule(atoms, max_length)``, by
+    row: candidates recur from one posterior to the next, and a rule is made once."""
+    return {}
+
+
+@functools.lru_cache(maxsize=256)
 def _every_rule(atoms: tuple[Literal, ...], max_length: int) -> np.ndarray:
     """Each rule of :func:`every_rule` (of any action) as the indices of its literals in
     ``literal_list(atoms)``, padded with -1 to ``max_length`` columns (made once per vocabulary;
@@ -274,7 +294,7 @@ def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray)
     wi, ni, _, _ = ev.pairs
     if not len(ni):
         return prior
-    truth = np.stack([*(ev.truth(r)[wi, ni] for r in space.pool), np.zeros(len(ni), dtype=bool)])
+    truth = np.stack([*(ev.pair_truth(r) for r in space.pool), np.zeros(len(ni), dtype=bool)])
     base = ev.union(space.given)[wi, ni]
     joint, which = distinct_unions(truth, sets)  # each distinct disjunction's likelihood once
     out = np.empty(len(joint))
@@ -339,13 +359,16 @@ def supported_rules(ev: Evidence, action: str, atoms: Sequence[Literal], model: 
                 gains[k, lo : lo + len(rows)] = model.nll_terms(ev.t, q).sum(axis=-1)[which]
     gains += costs[None, :]
     chosen: dict[Rule, None] = {r: None for r in around}
+    made = _made(action, kept, max_length)
     per = max(1, size // len(contexts))
     for gain in gains:
         taken = 0
         for k in np.argsort(gain, kind="stable"):
             if taken >= per:
                 break
-            rule = _rule_at(action, lits, index[k])
+            rule = made.get(k)
+            if rule is None:
+                rule = made[k] = _rule_at(action, lits, index[k])
             if rule not in chosen:
                 chosen[rule] = None
                 taken += 1
