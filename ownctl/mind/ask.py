@@ -26,6 +26,7 @@ import numpy as np
 
 from ownctl.errors import BadValue
 from ownctl.learn.calibration import CALIBRATIONS, IDENTITY, calibrate
+from ownctl.learn.distinct import distinct_unions
 from ownctl.learn.induce import calibration_objectives
 from ownctl.learn.model import LABEL_NOISE
 from ownctl.learn.posterior import RulePosterior
@@ -287,18 +288,19 @@ def _frame(mind: Mind, idx: Sequence[int], reading: Reading) -> Frame:
     return frame if reading == IDENTITY else frame.with_own(calibrate(frame.own, *reading))
 
 
-def _set_table(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
-    """(K, W, n) truth of each rule set of ``rp`` (minus its allow norms) in every world."""
+def _set_tables(rp: RulePosterior, frame: Frame, worlds: Worlds) -> tuple[np.ndarray, np.ndarray]:
+    """The (U, W, n) truth in every world of each distinct disjunction of ``rp``'s rule sets (minus
+    its allow norms), and which one each set's is (K,): set ``k``'s truth is ``out[which[k]]``. A
+    posterior's ~10,000 sets have some hundreds of distinct disjunctions on a task's objects
+    (:func:`ownctl.learn.distinct.distinct_unions`), so the sums over sets are taken over those."""
     lay = _layout(rp)
     shape = (len(worlds.bits), frame.n)
     table = np.concatenate([each_rule_truth(lay.pool, frame, worlds),
                             np.zeros((1, *shape), dtype=bool)])  # row -1: no rule
-    out: np.ndarray = table[lay.index[:, 0]]
-    for c in range(1, lay.index.shape[1]):
-        out = out | table[lay.index[:, c]]
+    out, which = distinct_unions(table, lay.index)
     for allow in rp.allows:  # a set minus an allow norm forbids what it forbids outside the norm
         out &= ~rule_truth([allow], frame, worlds)[None]
-    return out
+    return out, which
 
 
 def step_forbidden(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarray:
@@ -313,8 +315,9 @@ def step_forbidden(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarra
     hit = _FORBIDDEN.get(key)
     if hit is not None and hit[0] is rp:
         return hit[1]
-    table = _set_table(rp, frame, worlds)
-    out: np.ndarray = np.clip(np.einsum("k,kwn->wn", rp.probabilities, table.astype(float)), 0.0, 1.0)
+    table, which = _set_tables(rp, frame, worlds)
+    mass = np.bincount(which, rp.probabilities, len(table))  # each distinct disjunction's probability
+    out: np.ndarray = np.clip(np.einsum("u,uwn->wn", mass, table.astype(float)), 0.0, 1.0)
     out.setflags(write=False)
     _FORBIDDEN.put(key, (rp, out))
     return out
@@ -497,11 +500,11 @@ def rule_answer_probabilities(mind: Mind, rule: Rule, temper: float = EXACT,
     rp = _posterior(mind, rule.action, temper)
     named, _ = relevant_atoms([[rule], *rp.sets, rp.allows])
     worlds = enumerate_worlds(frame, named, with_other=True)
-    table = _set_table(rp, frame, worlds)  # (K, W, n)
+    table, which = _set_tables(rp, frame, worlds)  # (U, W, n), (K,)
     covered = rule_truth([rule], frame, worlds)[None]  # (1, W, n)
     w = worlds.weights[None]
-    some_allowed = (w * (covered & ~table)).sum(axis=1)  # (K, n): P(covered and allowed)
-    some_forbidden = (w * (covered & table)).sum(axis=1)
+    some_allowed = (w * (covered & ~table)).sum(axis=1)[which]  # (K, n): P(covered and allowed)
+    some_forbidden = (w * (covered & table)).sum(axis=1)[which]
     p_yes = float(rp.probabilities @ np.prod(np.clip(1 - some_allowed, 0, 1), axis=1))
     p_no = float(rp.probabilities @ np.prod(np.clip(1 - some_forbidden, 0, 1), axis=1))
     if not covered.any():  # it describes nothing here: "yes" and "no" are both true; count it "yes"
