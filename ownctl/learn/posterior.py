@@ -114,7 +114,7 @@ class RulePosterior:
             part = frame.take(np.arange(lo, min(frame.n, lo + step)))
             ev = Evidence(part, np.zeros(part.n))
             shape = ev.worlds.weights.shape
-            used, index = self._used()
+            used, index = self._used
             none = np.zeros(shape, dtype=bool)  # -1 pads
             truth = np.stack([*(ev.truth(self.rules[k]) for k in used), none])
             joint, which = distinct_unions(truth, index)
@@ -122,11 +122,14 @@ class RulePosterior:
             out[lo : lo + part.n] = self.probabilities @ q[which]  # summed set by set, as decided
         return np.clip(out, 0.0, 1.0)
 
+    @functools.cached_property
     def _used(self) -> tuple[list[int], np.ndarray]:
         """The rules some set holds (indices into ``rules``, ascending) and ``index`` renumbered
         into that list (-1 still pads): a window holds a few sets of a few rules, and the truth of
         the others need not be computed."""
-        used = np.unique(self.index[self.index >= 0])
+        present = np.zeros(len(self.rules) + 1, dtype=bool)
+        present[self.index] = True  # -1 marks the last slot, which is no rule
+        used = np.flatnonzero(present[:-1])
         at = np.full(len(self.rules) + 1, -1, dtype=np.int64)
         at[used] = np.arange(len(used))
         return used.tolist(), at[self.index]
@@ -154,7 +157,7 @@ class RulePosterior:
         if not mine.any():
             return min(float(self.probabilities.sum()), 1.0)
         where = np.nonzero(mine)  # the (world, object) cells the rule holds in
-        used, index = self._used()
+        used, index = self._used
         none = np.zeros(len(where[0]), dtype=bool)
         truth = np.stack([*(ev.truth(self.rules[k])[where] for k in used), none])
         joint, which = distinct_unions(truth, index)
