@@ -146,19 +146,6 @@ class Evidence:
         starts = np.flatnonzero(np.r_[True, ni[1:] != ni[:-1]]) if len(ni) else np.zeros(0, dtype=int)
         return wi, ni, self.worlds.weights[wi, ni], starts
 
-    def pair_truth(self, rule: Rule) -> np.ndarray:
-        """(P,) truth of one conjunction at each pair of :attr:`pairs` (each literal's row cached):
-        :meth:`truth` read at the pairs, without the (W, n) table."""
-        wi, ni, _, _ = self.pairs
-        rows = self.__dict__.setdefault("_pair_literal", {})
-        out = np.ones(len(ni), dtype=bool)
-        for lit in rule.literals:
-            row = rows.get(lit)
-            if row is None:
-                row = rows[lit] = self.literal(lit)[wi, ni]
-            out = out & row
-        return out
-
     def pair_literals(self, lits: tuple[Literal, ...]) -> np.ndarray:
         """(literals, pairs) truth of each literal at each pair of :attr:`pairs`, the literals given
         as atom, negation, atom, negation... (made once per literal list)."""

@@ -297,7 +297,7 @@ def _log_weights(ev: Evidence, model: Model, space: RuleSpace, sets: np.ndarray)
     wi, ni, _, _ = ev.pairs
     if not len(ni):
         return prior
-    truth = np.stack([*(ev.pair_truth(r) for r in space.pool), np.zeros(len(ni), dtype=bool)])
+    truth = np.stack([*(ev.truth(r)[wi, ni] for r in space.pool), np.zeros(len(ni), dtype=bool)])
     base = ev.union(space.given)[wi, ni]
     joint, which = distinct_unions(truth, sets)  # each distinct disjunction's likelihood once
     out = np.empty(len(joint))
