@@ -3,56 +3,125 @@
 When the robot has put a question to a speaker (``ownctl ask --put``), that speaker's next utterance
 is first read as its answer, into the same instructions as any claim, permission or norm:
 
-- "May I ACTION OBJ?": "yes", "you may", "sure", "go ahead" -> ``allow ACTION on OBJ``; "no",
-  "you may not", "don't" -> ``forbid ACTION on OBJ``;
-- "Does RULE hold?": "yes" -> the norm ``forbid ...``; "no" -> its allow norm ``allow ...`` (nothing
-  it describes is forbidden); "partly", "sometimes", "not always" -> nothing is taught;
+- "May I ACTION OBJ?": a yes ("yes", "you may", "sure, go ahead") -> ``allow ACTION on OBJ``; a no
+  ("no", "you may not", "no way, don't") -> ``forbid ACTION on OBJ``; or a sentence that says
+  exactly that permission of OBJ ("No, don't throw it away"; "Yes, throw it away" asks for what
+  was asked), read with OBJ and ACTION as "it" and "do that";
+- "Does RULE hold?": a yes -> the norm ``forbid ...``; a no -> its allow norm ``allow ...``
+  (nothing it describes is forbidden); "partly", "sometimes", "not always" -> nothing is taught;
 - "Whose is OBJ?": an ownership statement ("it's Jake's", "mine", "nobody's", "Jake and Casey's")
   -> its claims about OBJ, and every agent it does not name "not theirs" (the answer names the
-  owners).
+  owners);
+- to any of them, "I don't know" (or "no idea", "not sure") answers without teaching anything.
 
-Anything else is not an answer (None): the utterance is understood as usual and the question stays
-pending. Pure: no I/O.
+A short reply is read clause by clause (between punctuation marks): every clause must be a yes,
+or every one a no (courtesies such as "thanks" aside), so "Sure, go ahead, thanks!" is a yes and
+"Yes... no" is no answer. Anything else is not an answer (None): the utterance is understood as
+usual and the question stays pending. Pure: no I/O.
 """
 
 from __future__ import annotations
 
+import re
 from collections.abc import Mapping
 from dataclasses import replace
 from typing import Any
 
-from ownctl.language.context import Context, NotUnderstood
-from ownctl.language.instructions import Claim, Instruction, NormInstruction, Permission
+from ownctl.errors import OwnctlError
+from ownctl.language.context import Context
+from ownctl.language.instructions import Claim, Instruction, NormInstruction, Permission, Request, Skip
 from ownctl.language.normalize import normalize
 from ownctl.logic.rules import Norm, parse_rule
 
 YES = ("yes", "yes you may", "you may", "yes you can", "you can", "sure", "go ahead", "ok", "okay",
-       "yes please", "yes go ahead", "of course", "yes of course", "yep", "yeah", "it is fine", "fine",
-       "yes it does", "it does", "yes it holds", "it holds", "always", "yes always")
+       "yes please", "yes go ahead", "of course", "yes of course", "yep", "yeah", "yup", "it is fine", "fine",
+       "yes it does", "it does", "yes it holds", "it holds", "always", "yes always", "absolutely",
+       "certainly", "definitely", "indeed", "yes indeed", "correct", "that is correct", "right",
+       "that is right", "true", "that is true", "it is true", "go on", "go for it", "please do",
+       "by all means", "be my guest", "sure thing", "no problem", "that is fine", "it is ok", "that is ok",
+       "you are allowed", "you have my permission", "it is allowed", "yes it is", "it is", "yes it is true")
 NO = ("no", "no you may not", "you may not", "no you can not", "you can not", "do not", "no do not",
       "please do not", "no please do not", "nope", "no it does not", "it does not", "never",
-      "no never", "no it does not hold", "it does not hold", "not at all")
-PARTLY = ("partly", "sometimes", "not always", "it depends", "in part", "only sometimes", "some of them")
+      "no never", "no it does not hold", "it does not hold", "not at all", "no way", "of course not",
+      "absolutely not", "certainly not", "definitely not", "not really", "by no means", "better not",
+      "you must not", "you should not", "you are not allowed", "it is not allowed", "do not do that",
+      "do not do it", "not true", "that is not true", "it is not true", "false", "wrong", "that is wrong",
+      "no it is not", "it is not", "not ok", "that is not ok", "it is not ok", "certainly not")
+PARTLY = ("partly", "sometimes", "not always", "it depends", "in part", "only sometimes", "some of them",
+          "partially", "in some cases", "depends")
+DONT_KNOW = ("i do not know", "do not know", "no idea", "i have no idea", "not sure", "i am not sure",
+             "dunno", "i dunno", "no clue", "i have no clue", "who knows", "i can not say", "can not say",
+             "hard to say", "i can not tell", "i am not certain", "not certain", "i do not remember",
+             "i forget", "beats me", "ask someone else")
+COURTESY = ("thanks", "thank you", "sorry", "hi", "hello", "hey")
+READINGS: tuple[tuple[str, tuple[str, ...]], ...] = (("yes", YES), ("no", NO), ("partly", PARTLY),
+                                                      ("unknown", DONT_KNOW))
+_CLAUSES = re.compile(r"[,.;:!?\u2013\u2014]+|\s-+\s")
+
+
+def reading(utterance: str) -> str | None:
+    """``"yes"``, ``"no"``, ``"partly"`` or ``"unknown"`` when ``utterance`` is one such reply as a
+    whole, or clause by clause with every clause the same one (courtesies aside); None otherwise."""
+    whole = _label(normalize(utterance))
+    if whole is not None:
+        return whole
+    labels = _clause_labels(utterance)
+    return labels.pop() if len(labels) == 1 and None not in labels else None
+
+
+def _clause_labels(utterance: str) -> set[str | None]:
+    """The reply each clause of ``utterance`` is (None: a clause that is none), courtesies aside."""
+    words = (normalize(clause) for clause in _CLAUSES.split(utterance))
+    return {_label(w) for w in words if w and w not in COURTESY}
+
+
+def _label(words: str) -> str | None:
+    """The reply ``words`` (normalised) are, a courtesy at either end aside ("no thanks")."""
+    for courtesy in COURTESY:
+        words = words.removesuffix(f" {courtesy}").removeprefix(f"{courtesy} ")
+    return next((name for name, phrases in READINGS if words in phrases), None)
 
 
 def answer_instructions(utterance: str, question: Mapping[str, Any], ctx: Context
                         ) -> tuple[Instruction, ...] | None:
     """The instructions ``utterance`` means as the answer to ``question`` (a pending question's
     ``{"kind", "object", "action", "rule"}``), or None if it is no answer to it."""
-    words = normalize(utterance)
+    label = reading(utterance)
+    if label == "unknown":  # an answer, which teaches nothing
+        return ()
     kind = question.get("kind")
     if kind == "may":
-        if words in YES or words in NO:
-            return (Permission(str(question["action"]), str(question["object"]), forbid=words in NO),)
-        return None
+        if label in ("yes", "no"):
+            return (Permission(str(question["action"]), str(question["object"]), forbid=label == "no"),)
+        if {"yes", "no"} <= _clause_labels(utterance):  # "yes... no": no answer
+            return None
+        return _permission(utterance, str(question["action"]), str(question["object"]), ctx)
     if kind == "rule":
         rule = parse_rule(str(question["rule"]))
-        if words in YES or words in NO:
-            return (NormInstruction(Norm("forbid" if words in YES else "allow", rule)),)
-        return () if words in PARTLY else None
+        if label in ("yes", "no"):
+            return (NormInstruction(Norm("forbid" if label == "yes" else "allow", rule)),)
+        return () if label == "partly" else None
     if kind == "whose":
         return _owners(utterance, str(question["object"]), ctx)
     return None
+
+
+def _permission(utterance: str, action: str, obj: str, ctx: Context) -> tuple[Instruction, ...] | None:
+    """The permission of ``action`` on ``obj`` a sentence states ("No, don't throw it away"), read
+    with ``obj`` and ``action`` as what "it" and "do that" refer to; None if it states anything else."""
+    from ownctl.language.understand import understand
+
+    try:
+        understood = understand(utterance, replace(ctx, about=obj, action=action))
+    except OwnctlError:
+        return None
+    # a reprimand ("No, don't throw it away!") also stops the action, which is not under way here;
+    # a request to do it ("Yes, throw it away") lets the robot do it
+    asked = (action, obj)
+    said = {Permission(action, obj, forbid=False) if type(i) is Request and (i.action, i.object) == asked
+            else i for i in understood.instructions if not (isinstance(i, Skip) and i.object == obj)}
+    one = next(iter(said)) if len(said) == 1 else None
+    return (one,) if isinstance(one, Permission) and (one.action, one.object) == asked else None
 
 
 def _owners(utterance: str, obj: str, ctx: Context) -> tuple[Instruction, ...] | None:
@@ -62,7 +131,7 @@ def _owners(utterance: str, obj: str, ctx: Context) -> tuple[Instruction, ...] |
 
     try:
         understood = understand(utterance, replace(ctx, about=obj))
-    except NotUnderstood:
+    except OwnctlError:  # no answer: the utterance is then understood as usual, and errs as usual
         return None
     claims = [i for i in understood.instructions if isinstance(i, Claim) and i.object == obj]
     if not claims or len(claims) != len(understood.instructions):
@@ -74,4 +143,4 @@ def _owners(utterance: str, obj: str, ctx: Context) -> tuple[Instruction, ...] |
     return tuple(replace(c, exclusive=False) for c in claims) + rest
 
 
-__all__ = ["NO", "PARTLY", "YES", "answer_instructions"]
+__all__ = ["DONT_KNOW", "NO", "PARTLY", "YES", "answer_instructions", "reading"]

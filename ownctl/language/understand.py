@@ -354,7 +354,10 @@ def _understand(utterance: str, ctx: Context) -> Understanding:
             if not _CHUNK_END.search(utterance.strip(" .!?;,:")) or "nothing to understand" in err.message:
                 raise
     try:
-        return _combine(_pieces(utterance, ctx))
+        pieces = _pieces(utterance, ctx)
+        if all(p.ignored is not None for p in pieces):  # every piece says nothing ("ok, ok")
+            raise NotUnderstood(utterance)
+        return _combine(pieces)
     except NotUnderstood:
         if isinstance(whole, NotUnderstood) and not whole.detail:
             raise

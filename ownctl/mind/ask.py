@@ -644,8 +644,9 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
     wrong (ties: task order): ``may`` for each step without a permission, ``act`` (``action``,
     default the last step) over those steps when there are two or more, and ``whose``; and
     ``rule`` on the ``top_rules`` rules of each step's posterior whose probability is nearest 1/2
-    (not yet stated, not certain); probabilities on the rule-set posteriors raised to ``temper``,
-    ownership read through :func:`task_reading` with ``read``."""
+    (not yet stated, not certain; only for steps holding a permission); probabilities on the
+    rule-set posteriors raised to ``temper``, ownership read through :func:`task_reading` with
+    ``read``."""
     reading = task_reading(mind, steps) if read else IDENTITY
     exp = expected_mistakes(mind, steps, objects, temper, reading)
     order = sorted(range(len(exp.objects)), key=lambda k: (-round(float(exp.p_wrong[k]), 12), k))
@@ -665,6 +666,8 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
             out.append(Question("whose", name))
     if "rule" in kinds:
         for s in steps:
+            if not mind.perms[s]:  # its posterior is still the prior over the cheapest rules
+                continue
             given = set(mind.given(s))
             probs = [(r, p) for r, p in _posterior(mind, s, temper).rule_probabilities().items()
                      if r not in given and 0.01 < p < 0.99]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import pytest
 
 from ownctl.language import Claim, Context, NormInstruction, Permission
-from ownctl.language.answers import answer_instructions
+from ownctl.language.answers import answer_instructions, reading
 from ownctl.logic.rules import parse_norm
 
 CTX = Context(speaker="jake", agents=frozenset({"jake", "casey", "ann"}),
@@ -15,12 +15,17 @@ RULE = {"kind": "rule", "rule": "forbid trash if isColored red"}
 WHOSE = {"kind": "whose", "object": "mug"}
 
 
-@pytest.mark.parametrize("words", ["yes", "Yes, you may.", "sure", "go ahead", "you can"])
+@pytest.mark.parametrize("words", ["yes", "Yes, you may.", "sure", "go ahead", "you can", "Sure, go ahead!",
+                                   "Yeah, sure. Thanks!", "Absolutely", "yes thanks", "Of course, go for it",
+                                   "Yes, throw it away", "Throw it away", "You may throw it away"])
 def test_yes_to_may_allows(words: str) -> None:
     assert answer_instructions(words, MAY, CTX) == (Permission("trash", "mug", forbid=False),)
 
 
-@pytest.mark.parametrize("words", ["no", "No, you may not!", "don't", "you can't"])
+@pytest.mark.parametrize("words", ["no", "No, you may not!", "don't", "you can't", "No way, don't!",
+                                   "Nope - never.", "Of course not.", "no thanks", "Absolutely not!",
+                                   "No, don't throw it away", "Don't throw the mug away",
+                                   "no, don't do that"])
 def test_no_to_may_forbids(words: str) -> None:
     assert answer_instructions(words, MAY, CTX) == (Permission("trash", "mug", forbid=True),)
 
@@ -32,6 +37,21 @@ def test_rule_answers() -> None:
     assert no is not None and isinstance(no[0], NormInstruction)
     assert no[0].norm.sign == "allow" and no[0].norm.rule == rule
     assert answer_instructions("not always", RULE, CTX) == ()
+    assert answer_instructions("Definitely not.", RULE, CTX) == no
+    assert answer_instructions("Yes, always", RULE, CTX) == answer_instructions("yes", RULE, CTX)
+
+
+@pytest.mark.parametrize("question", [MAY, RULE, WHOSE])
+@pytest.mark.parametrize("words", ["I don't know", "No idea, sorry", "Hmm, not sure", "dunno"])
+def test_not_knowing_answers_and_teaches_nothing(words: str, question: dict) -> None:
+    assert answer_instructions(words, question, CTX) == ()
+
+
+@pytest.mark.parametrize(("words", "expected"), [("Sure, go ahead, thanks!", "yes"), ("No. Never!", "no"),
+                                                 ("yes... no", None), ("no, yes", None), ("ok ok", None),
+                                                 ("sometimes", "partly"), ("no idea", "unknown")])
+def test_a_reply_is_read_clause_by_clause_and_must_agree(words: str, expected: str | None) -> None:
+    assert reading(words) == expected
 
 
 def test_whose_answers_name_every_owner() -> None:
@@ -44,6 +64,8 @@ def test_whose_answers_name_every_owner() -> None:
 
 
 @pytest.mark.parametrize(("words", "question"), [("hello", MAY), ("maybe", RULE), ("yes", WHOSE),
-                                                 ("throw it away", MAY)])
+                                                 ("throw away the book", MAY), ("pick it up", MAY),
+                                                 ("yes... no", MAY), ("go ahead", WHOSE),
+                                                 ("No, that's Casey's", MAY)])
 def test_other_words_are_no_answer(words: str, question: dict) -> None:
     assert answer_instructions(words, question, CTX) is None

@@ -23,6 +23,13 @@ def test_gibberish_is_not_understood_and_lists_examples(utterance: str) -> None:
     assert isinstance(err.value, OwnctlError) and err.value.valid
 
 
+@pytest.mark.parametrize("utterance", ["ok, ok", "sure, go on", "Okay. Okay.", "hmm, well"])
+def test_pieces_that_each_say_nothing_are_not_understood(utterance: str) -> None:
+    with pytest.raises(NotUnderstood) as err:
+        understand(utterance, CTX)
+    assert repr(utterance) in str(err.value) and "\n" not in str(err.value)
+
+
 @pytest.mark.parametrize("utterance", ["", "   ", "!!!", "Baxter!"])
 def test_empty_utterances_are_not_understood(utterance: str) -> None:
     with pytest.raises(NotUnderstood, match="nothing to understand"):

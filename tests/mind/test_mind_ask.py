@@ -377,6 +377,15 @@ def test_candidates_include_the_object_about_to_be_acted_on() -> None:
         assert (Question("act", name, "trash", steps=open_steps) in pool) == (len(open_steps) > 1)
 
 
+def test_rule_questions_are_about_steps_holding_a_permission() -> None:
+    mind = small_mind(0, perms=0)
+    objects = list(range(len(mind.objects)))
+    assert candidates(mind, STEPS, objects, kinds=("rule",)) == []  # every posterior is the prior
+    mind.permit("trash", "o1", 1.0)
+    asked = {q.action for q in candidates(mind, STEPS, objects, kinds=("rule",))}
+    assert asked == {"trash"}
+
+
 @pytest.mark.slow
 def test_taught_permission_questions_count_the_decisions_up_to_their_object() -> None:
     mind = small_mind(2, n=4)
