@@ -51,8 +51,8 @@ def ask(
     if speaker is not None:
         raise typer.BadParameter("--as only applies with --put")
     data = app.questions(app_ctx(ctx), task, names, top)
-    rows = [[q["text"], q["gain"], ", ".join(f"{a['answer']} ({a['p']:.2f})" for a in q["answers"])]
-            for q in data["questions"]]
+    rows = [[q["text"], _mistakes(q["gain"]),
+             ", ".join(f"{a['answer']} ({a['p']:.2f})" for a in q["answers"])] for q in data["questions"]]
     title = (f"{data['task']}: {data['expected_mistakes']:.2f} expected mistakes on "
              f"{len(data['objects'])} objects")
     listing = table(title, ["question", "gain", "answers (p)"], rows)
@@ -64,3 +64,9 @@ def ask(
                        "prior over rule sets, and a task asks only after its first permission.")
 
     emit(data, json_out, quiet, show)
+
+
+def _mistakes(value: float) -> str:
+    """An expected number of mistakes to the thousandth (a gain within half of it of 0 is 0.000)."""
+    text = f"{value:.3f}"
+    return "0.000" if text == "-0.000" else text

@@ -198,3 +198,10 @@ def test_owners_with_coverage_gives_a_set_per_agent(world: Ownctl) -> None:
     assert data["coverage"] == 0.9
     for row in data["owners"]:
         assert set(row["conformal"]["set"]) <= {"owns", "does not own"} and row["conformal"]["set"]
+
+
+def test_gains_are_shown_to_the_thousandth_of_a_mistake() -> None:
+    from ownctl.cli.ask_cmd import _mistakes
+
+    assert [_mistakes(g) for g in (0.0237, -2.52e-06, 0.0, -0.5, 1.23456)] == [
+        "0.024", "0.000", "0.000", "-0.500", "1.235"]
