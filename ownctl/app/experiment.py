@@ -129,7 +129,7 @@ def run(
     from ownctl.experiment.runner import check_settings, run_experiment
 
     exp = get_experiment(experiment)
-    check_settings(trials, jobs, learner, scheduler, decide)
+    check_settings(trials, jobs, learner, scheduler, decide, seed)
     conditions = task_conditions(task) if exp.name == "task" else None
     if exp.name != "task" and task != "both":
         raise BadValue(f"--task only applies to the task experiment, not {exp.name!r}")
@@ -173,10 +173,13 @@ def _families(experiment: str, count: int | None, first: int | None, world: str 
         raise BadValue(f"--families only applies to the norms experiment, not {experiment!r}")
     if world is not None:
         raise BadValue("--families and --world exclude each other: families draw their own worlds")
+    from ownctl.experiment.runner import check_seed
     from ownctl.world.families import EVALUATION_SEEDS, norm_families
 
-    if first is not None and first < 0:
-        raise BadValue(f"--family-seed must be a non-negative integer, got {first}")
+    if first is not None:
+        check_seed(first, "--family-seed")
+    if count < 1:
+        raise BadValue(f"--families must be at least 1, got {count}")
     return norm_families(count, EVALUATION_SEEDS.start if first is None else first)
 
 

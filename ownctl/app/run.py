@@ -244,6 +244,11 @@ def run(
     oracle answers them, ``instructor="none"`` only lists them."""
     check_options(task, instructor, arm, grasp, render, camera)
     check_ask(ask)
+    from ownctl.experiment.runner import check_seed
+
+    check_seed(seed)
+    if layout_seed is not None:
+        check_seed(layout_seed, "--layout-seed")
     chosen = get_task(task)
     fresh, empty = _new_world(ctx, seed, layout_seed)
     world = current_world(ctx) if fresh is None else _joined(current_world(ctx), fresh)

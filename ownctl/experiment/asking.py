@@ -295,7 +295,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     document: per task, per strategy, per budget the mean mistakes with its 95% interval and the
     mean number of questions asked, and the paired difference ours - entropy per budget.
     """
-    check_settings(trials, jobs, "ours")
+    check_settings(trials, jobs, "ours", seed=seed)
     policy = Policy(min_gain, tuple(kinds), temper, read=read, ahead=ahead, decide=decide)
     names = [c.name for c in TASK_CONDITIONS]
     conds = [names.index(t) for t in tasks]

@@ -138,13 +138,14 @@ def _chunks(pairs: list[Unit], jobs: int) -> list[list[Unit]]:
 
 
 def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None = None,
-                   decide: str = "map") -> None:
-    """BadValue / UnknownName for a trial count or job count below 1, an unknown learner, both
-    local jobs and a scheduler, or an unknown decision mode."""
+                   decide: str = "map", seed: int = 0) -> None:
+    """BadValue / UnknownName for a trial count or job count below 1, a negative seed, an unknown
+    learner, both local jobs and a scheduler, or an unknown decision mode."""
     if trials < 1:
-        raise BadValue(f"trials must be at least 1, got {trials}")
+        raise BadValue(f"--trials must be at least 1, got {trials}")
     if jobs < 1:
-        raise BadValue(f"jobs must be at least 1, got {jobs}")
+        raise BadValue(f"--jobs must be at least 1, got {jobs}")
+    check_seed(seed)
     if learner not in LEARNERS:
         raise UnknownName("learner", learner, LEARNERS)
     if scheduler is not None and jobs != 1:
@@ -152,6 +153,14 @@ def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None =
     if scheduler is not None and not scheduler.strip():
         raise BadValue("--scheduler needs an address such as tcp://host:8786")
     decide_mode(decide)
+
+
+def check_seed(seed: int, option: str = "--seed") -> int:
+    """``seed`` if it is a non-negative integer (what numpy's generators take); BadValue naming
+    ``option`` otherwise."""
+    if isinstance(seed, bool) or not isinstance(seed, int) or seed < 0:
+        raise BadValue(f"{option} must be a non-negative integer, got {seed!r}")
+    return seed
 
 
 def run_trials(name: str, factories: Sequence[WorldFactory], learner: str, seed: int, units: Sequence[Unit],
@@ -207,7 +216,7 @@ def run_experiment(
     local processes. ``decide``: how learned rules decide and are scored (``map`` or ``posterior``).
     """
     exp = get_experiment(name)
-    check_settings(trials, jobs, learner, scheduler, decide)
+    check_settings(trials, jobs, learner, scheduler, decide, seed)
     chosen = select_conditions(exp, conditions)
     factories: list[WorldFactory] = list(families) or [world_factory]
     units = [(f, c, t) for f in range(len(factories)) for t in range(trials) for c in chosen]

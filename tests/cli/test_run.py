@@ -58,6 +58,9 @@ def test_bad_options_are_refused_before_anything_is_written(ownctl: Ownctl) -> N
     ownctl("run", "trashAll", "--instructor", "teacher", code=1)
     assert "valid: auto, left, right" in ownctl("run", "trashAll", "--arm", "middle", code=1).stderr
     ownctl("run", "trashAll", "--grasp", "glue", "--kinematic", code=1)
+    for option in ("--seed", "--layout-seed"):
+        said = ownctl("run", "trashAll", "--kinematic", f"{option}=-1", code=1).stderr
+        assert f"{option} must be a non-negative integer, got -1" in said
     assert ownctl("run", "cleanAll", code=1).stdout == ""  # nothing shown before the error
     assert ownctl.digest() == before
 
