@@ -50,12 +50,13 @@ def load_world(path: str | Path) -> FileWorld:
     import numpy as np
 
     p = Path(path)
-    if not p.is_file():
-        raise OwnctlError(f"world file {str(p)!r} does not exist")
     try:
+        if not p.is_file():  # a name too long for the system is an OSError here
+            raise OwnctlError(f"world file {str(p)!r} does not exist")
         data = tomllib.loads(p.read_text(encoding="utf-8"))
     except (OSError, UnicodeDecodeError) as exc:
-        raise OwnctlError(f"cannot read world file {str(p)!r}: {exc}") from None
+        reason = getattr(exc, "strerror", None) or exc
+        raise OwnctlError(f"cannot read world file {str(p)!r}: {reason}") from None
     except tomllib.TOMLDecodeError as exc:
         raise OwnctlError(f"{p}: not valid TOML: {exc}") from None
     factory = FileWorld(data, str(p))
@@ -135,7 +136,7 @@ def run(
         raise BadValue(f"--task only applies to the task experiment, not {exp.name!r}")
     chosen_families = _families(exp.name, families, family_seed, world)
     check_folder("csv", csv_path)
-    check_folder("plot", plot_path)
+    check_plot(plot_path)
     factory, name, comparable = _world_factory(world)
     result = run_experiment(exp.name, trials, seed, jobs, factory, learner, progress, conditions, name,
                             comparable, chosen_families, scheduler, decide)
@@ -178,8 +179,6 @@ def _families(experiment: str, count: int | None, first: int | None, world: str 
 
     if first is not None:
         check_seed(first, "--family-seed")
-    if count < 1:
-        raise BadValue(f"--families must be at least 1, got {count}")
     return norm_families(count, EVALUATION_SEEDS.start if first is None else first)
 
 
@@ -215,10 +214,34 @@ def _paper_value(paper: Mapping[str, Any], headline: str, group: str, row: str, 
     return ""
 
 
+PLOT_FORMATS = ("png", "pdf", "svg", "svgz", "eps", "ps", "jpg", "jpeg", "tif", "tiff", "webp")
+
+
+def check_plot(path: str | Path | None) -> None:
+    """BadValue / OwnctlError, before any work, if ``--plot`` names no file, a format the plots
+    cannot be drawn in (by its suffix; none: PNG) or a file in a folder that does not exist."""
+    if path is None:
+        return
+    p = Path(path)
+    if p.name in ("", ".", ".."):
+        raise BadValue(f"--plot needs a file name such as table.png, got {str(path)!r}")
+    suffix = p.suffix.lower().removeprefix(".")
+    if suffix and suffix not in PLOT_FORMATS:
+        raise BadValue(f"cannot draw a plot as {p.suffix!r} ({str(path)!r}); valid suffixes: "
+                       f"{', '.join('.' + f for f in PLOT_FORMATS)}", [f".{f}" for f in PLOT_FORMATS])
+    check_folder("plot", path)
+
+
 def check_folder(what: str, path: str | Path | None) -> None:
     """OwnctlError, before any work, if the ``what`` file ``path`` could not be written: its folder
     does not exist."""
-    if path is not None and not Path(path).parent.exists():
+    if path is None:
+        return
+    try:
+        there = Path(path).parent.exists()
+    except OSError as exc:  # a name too long for the system
+        raise OwnctlError(f"cannot write the {what} file {str(path)!r}: {exc.strerror}") from None
+    if not there:
         raise OwnctlError(f"cannot write the {what} file {str(path)!r}: its folder does not exist")
 
 

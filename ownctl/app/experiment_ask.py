@@ -22,7 +22,7 @@ def run(budgets: str, trials: int, seed: int, jobs: int, task: str, plot_path: s
     values questions with ownership read as the learner reads it (default: the task asker's);
     ``ahead``: how many of ours' best questions are valued again with the look-ahead (a whole number,
     checked before any work; default: the task asker's); ``decide``: ``decide.rules`` of every robot."""
-    from ownctl.app.experiment import check_folder, task_conditions
+    from ownctl.app.experiment import check_plot, task_conditions
     from ownctl.app.settings import ASK_MIN_GAIN
     from ownctl.app.settings import min_gain as check_gain
     from ownctl.experiment.asking import (
@@ -38,7 +38,7 @@ def run(budgets: str, trials: int, seed: int, jobs: int, task: str, plot_path: s
 
     chosen = parse_budgets(budgets)
     names = task_conditions(task) or ["collectAll", "trashAll"]
-    check_folder("plot", plot_path)
+    check_plot(plot_path)
     gain = ASK_MIN_GAIN if min_gain is None else check_gain(min_gain)
     chosen_kinds = TASK_KINDS if kinds is None else parse_kinds(kinds)
     power = TASK_TEMPER if temper is None else check_temper(temper)

@@ -137,14 +137,18 @@ def _chunks(pairs: list[Unit], jobs: int) -> list[list[Unit]]:
     return [pairs[i : i + size] for i in range(0, len(pairs), size)]
 
 
+MAX_TRIALS = 100_000  # per condition: every trial is planned before the first runs
+MAX_JOBS = 1024  # worker processes on one machine (a cluster is given by --scheduler)
+
+
 def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None = None,
                    decide: str = "map", seed: int = 0) -> None:
     """BadValue / UnknownName for a trial count or job count below 1, a negative seed, an unknown
     learner, both local jobs and a scheduler, or an unknown decision mode."""
-    if trials < 1:
-        raise BadValue(f"--trials must be at least 1, got {trials}")
-    if jobs < 1:
-        raise BadValue(f"--jobs must be at least 1, got {jobs}")
+    if not 1 <= trials <= MAX_TRIALS:
+        raise BadValue(f"--trials must be an integer from 1 to {MAX_TRIALS:,}, got {trials}")
+    if not 1 <= jobs <= MAX_JOBS:
+        raise BadValue(f"--jobs must be an integer from 1 to {MAX_JOBS:,}, got {jobs}")
     check_seed(seed)
     if learner not in LEARNERS:
         raise UnknownName("learner", learner, LEARNERS)

@@ -147,11 +147,11 @@ def _probe_file(location: Location) -> str:
     """'missing' (absent or empty file) or 'sqlite'; raise StoreError for anything else."""
     path = location.path
     assert path is not None
-    if not path.exists():
-        return "missing"
-    if not path.is_file():
-        raise StoreError(f"{path} is not a file; --db needs an ownctl store file or a database URL")
     try:
+        if not path.exists():  # a name too long for the system is an OSError here
+            return "missing"
+        if not path.is_file():
+            raise StoreError(f"{path} is not a file; --db needs an ownctl store file or a database URL")
         with path.open("rb") as handle:
             head = handle.read(len(SQLITE_MAGIC))
     except OSError as exc:

@@ -262,8 +262,11 @@ def norm_family(seed: int) -> NormFamily:
     raise BadValue(f"no norm family with the features {sorted(forced)} found for seed {seed}")
 
 
+MAX_FAMILIES = 10_000  # each is drawn (and checked for its features) before the first trial runs
+
+
 def norm_families(count: int, first: int = EVALUATION_SEEDS.start) -> list[NormFamily]:
     """``count`` families of consecutive seeds from ``first`` (by default the evaluation range)."""
-    if count < 1:
-        raise BadValue(f"families must be at least 1, got {count}")
+    if not 1 <= count <= MAX_FAMILIES:
+        raise BadValue(f"--families must be an integer from 1 to {MAX_FAMILIES:,}, got {count}")
     return [norm_family(first + i) for i in range(count)]

@@ -46,6 +46,13 @@ def test_missing_explicit_store_needs_init(tmp_path: Path) -> None:
     _run(["--db", str(path), "agent", "list"], {"OWNCTL_DB": None}, 0)
 
 
+def test_a_store_name_too_long_for_the_system_is_one_line(tmp_path: Path) -> None:
+    for path in (tmp_path / ("s" * 300), tmp_path / ("d" * 300) / "store.db"):
+        for args in (["init"], ["agent", "list"]):
+            _, err = _run(["--db", str(path), *args], {"OWNCTL_DB": None}, 1)
+            assert "File name too long" in err and err.count("\n") == 1
+
+
 def test_foreign_and_junk_files_are_refused_untouched(tmp_path: Path) -> None:
     other = tmp_path / "other.db"
     with sqlite3.connect(other) as conn:

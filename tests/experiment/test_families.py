@@ -164,7 +164,7 @@ def test_families_on_the_command_line(tmp_path) -> None:
     text = runner.invoke(ownctl_app, ["experiment", "norms", "--families", "1", "--trials", "1"])
     assert text.exit_code == 0 and "worst acc" in text.stdout and "(1000)" in text.stdout
     for args, message in ((["norms", "--family-seed", "3"], "--family-seed needs --families"),
-                          (["norms", "--families", "0"], "families must be at least 1"),
+                          (["norms", "--families", "0"], "--families must be an integer from 1 to 10,000"),
                           (["norms", "--families", "1", "--world", "w.toml"], "exclude each other")):
         bad = runner.invoke(ownctl_app, ["experiment", *args])
         assert bad.exit_code == 1 and message in bad.stderr
