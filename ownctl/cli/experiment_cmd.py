@@ -25,12 +25,15 @@ if TYPE_CHECKING:
 experiment_app = Group(help="The paper's experiments (Tables 1-3), beside its values.\n\n"
                        "Each runs in memory and prints ours and the paper's published figures side by side.")
 
-TrialsOpt = Annotated[int, typer.Option("--trials", "-n", metavar="N", help="Trials per condition.")]
+TrialsOpt = Annotated[
+    int, typer.Option("--trials", "-n", metavar="N", help="Trials per condition (1 to 100,000).")
+]
 SeedOpt = Annotated[
     int, typer.Option("--seed", metavar="SEED", help="Seed; trial t of condition c uses [seed, c, t].")
 ]
 JobsOpt = Annotated[
-    int, typer.Option("--jobs", "-j", metavar="N", help="Worker processes (results do not depend on it).")
+    int, typer.Option("--jobs", "-j", metavar="N",
+                      help="Worker processes, 1 to 1,024 (results do not depend on it).")
 ]
 SchedulerOpt = Annotated[
     str | None,
@@ -115,7 +118,7 @@ def norms(
     world: WorldOpt = None, learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None,
     plot: PlotOpt = None, quiet: QuietOpt = False,
     families: Annotated[int | None, typer.Option(
-        "--families", metavar="N", help="Run on N generated norm families instead of one world "
+        "--families", metavar="N", help="Run on N (1 to 10,000) generated norm families instead of one world "
         "(every action scored, with or without a norm); report the mean over families and the worst."
     )] = None,
     family_seed: Annotated[int | None, typer.Option(
