@@ -6,7 +6,8 @@ is first read as its answer, into the same instructions as any claim, permission
 - "May I ACTION OBJ?": a yes ("yes", "you may", "sure, go ahead") -> ``allow ACTION on OBJ``; a no
   ("no", "you may not", "no way, don't") -> ``forbid ACTION on OBJ``; or a sentence that says
   exactly that permission of OBJ ("No, don't throw it away"; "Yes, throw it away" asks for what
-  was asked), read with OBJ and ACTION as "it" and "do that";
+  was asked), perhaps with the reason it gives ("No, that's Casey's": claims about OBJ and the
+  norm they imply, as the sentence says anyway), read with OBJ and ACTION as "it" and "do that";
 - "Does RULE hold?": a yes -> the norm ``forbid ...``; a no -> its allow norm ``allow ...``
   (nothing it describes is forbidden); "partly", "sometimes", "not always" -> nothing is taught;
 - "Whose is OBJ?": an ownership statement ("it's Jake's", "mine", "nobody's", "Jake and Casey's")
@@ -107,8 +108,9 @@ def answer_instructions(utterance: str, question: Mapping[str, Any], ctx: Contex
 
 
 def _permission(utterance: str, action: str, obj: str, ctx: Context) -> tuple[Instruction, ...] | None:
-    """The permission of ``action`` on ``obj`` a sentence states ("No, don't throw it away"), read
-    with ``obj`` and ``action`` as what "it" and "do that" refer to; None if it states anything else."""
+    """The permission of ``action`` on ``obj`` a sentence states ("No, don't throw it away"), with
+    the claims about ``obj`` it makes beside it ("No, that's Casey's"), read with ``obj`` and
+    ``action`` as what "it" and "do that" refer to; None if it states anything else."""
     from ownctl.language.understand import understand
 
     try:
@@ -118,10 +120,17 @@ def _permission(utterance: str, action: str, obj: str, ctx: Context) -> tuple[In
     # a reprimand ("No, don't throw it away!") also stops the action, which is not under way here;
     # a request to do it ("Yes, throw it away") lets the robot do it
     asked = (action, obj)
-    said = {Permission(action, obj, forbid=False) if type(i) is Request and (i.action, i.object) == asked
-            else i for i in understood.instructions if not (isinstance(i, Skip) and i.object == obj)}
-    one = next(iter(said)) if len(said) == 1 else None
-    return (one,) if isinstance(one, Permission) and (one.action, one.object) == asked else None
+    said = tuple(dict.fromkeys(
+        Permission(action, obj, forbid=False) if type(i) is Request and (i.action, i.object) == asked else i
+        for i in understood.instructions if not (isinstance(i, Skip) and i.object == obj)))
+    permissions = [i for i in said if isinstance(i, Permission)]
+    if len(permissions) != 1 or (permissions[0].action, permissions[0].object) != asked:
+        return None
+    # the reason it gives, as the ordinary reading of the sentence does: whose it is, and the norm
+    # that makes it so ("No, that's Casey's": "forbid trash if ownedBy casey")
+    reasons = all(isinstance(i, Permission | Claim) and i.object == obj
+                  or isinstance(i, NormInstruction) and i.norm.rule.action == action for i in said)
+    return said if reasons else None
 
 
 def _owners(utterance: str, obj: str, ctx: Context) -> tuple[Instruction, ...] | None:

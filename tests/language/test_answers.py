@@ -41,6 +41,12 @@ def test_rule_answers() -> None:
     assert answer_instructions("Yes, always", RULE, CTX) == answer_instructions("yes", RULE, CTX)
 
 
+def test_a_permission_answer_may_say_whose_it_is() -> None:
+    got = answer_instructions("No, that's Casey's", MAY, CTX)
+    assert got is not None and Permission("trash", "mug", forbid=True) in got and Claim("mug", "casey") in got
+    assert sum(isinstance(i, Permission) for i in got) == 1
+
+
 @pytest.mark.parametrize("question", [MAY, RULE, WHOSE])
 @pytest.mark.parametrize("words", ["I don't know", "No idea, sorry", "Hmm, not sure", "dunno"])
 def test_not_knowing_answers_and_teaches_nothing(words: str, question: dict) -> None:
@@ -66,6 +72,6 @@ def test_whose_answers_name_every_owner() -> None:
 @pytest.mark.parametrize(("words", "question"), [("hello", MAY), ("maybe", RULE), ("yes", WHOSE),
                                                  ("throw away the book", MAY), ("pick it up", MAY),
                                                  ("yes... no", MAY), ("go ahead", WHOSE),
-                                                 ("No, that's Casey's", MAY)])
+                                                 ("No, don't throw away the book", MAY)])
 def test_other_words_are_no_answer(words: str, question: dict) -> None:
     assert answer_instructions(words, question, CTX) is None
