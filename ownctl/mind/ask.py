@@ -37,6 +37,7 @@ from ownctl.logic.prob import (
     Worlds,
     each_rule_truth,
     enumerate_worlds,
+    p_forbidden,
     relevant_atoms,
     rule_truth,
 )
@@ -644,7 +645,8 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
     wrong (ties: task order): ``may`` for each step without a permission, ``act`` (``action``,
     default the last step) over those steps when there are two or more, and ``whose``; and
     ``rule`` on the ``top_rules`` rules of each step's posterior whose probability is nearest 1/2
-    (not yet stated, not certain; only for steps holding a permission); probabilities on the
+    (not yet stated, not certain, holding for some of the objects; only for steps holding a
+    permission); probabilities on the
     rule-set posteriors raised to ``temper``, ownership read through :func:`task_reading` with
     ``read``."""
     reading = task_reading(mind, steps) if read else IDENTITY
@@ -665,15 +667,23 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
         if "whose" in kinds and len(owner_sets(mind, name, reading)) > 1:
             out.append(Question("whose", name))
     if "rule" in kinds:
+        frame = mind.frame_of([mind.obj(o) for o in objects])
         for s in steps:
             if not mind.perms[s]:  # its posterior is still the prior over the cheapest rules
                 continue
             given = set(mind.given(s))
             probs = [(r, p) for r, p in _posterior(mind, s, temper).rule_probabilities().items()
-                     if r not in given and 0.01 < p < 0.99]
+                     if r not in given and 0.01 < p < 0.99 and _describes_some(r, frame)]
             probs.sort(key=lambda rp: (abs(rp[1] - 0.5), len(rp[0].literals), rp[0].text()))
             out += [Question("rule", action=s, rule=r) for r, _ in probs[:top_rules]]
     return out
+
+
+def _describes_some(rule: Rule, frame: Frame) -> bool:
+    """Whether ``rule`` may hold for some object of ``frame``: one that holds for none ("forbid find
+    if not inArea any" where every object is in an area) is surely answered "yes" and teaches
+    nothing about these objects."""
+    return bool((p_forbidden([rule], frame) > 0).any())
 
 
 def horizon(question: Question, names: Sequence[str]) -> int:

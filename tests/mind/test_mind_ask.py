@@ -382,8 +382,16 @@ def test_rule_questions_are_about_steps_holding_a_permission() -> None:
     objects = list(range(len(mind.objects)))
     assert candidates(mind, STEPS, objects, kinds=("rule",)) == []  # every posterior is the prior
     mind.permit("trash", "o1", 1.0)
-    asked = {q.action for q in candidates(mind, STEPS, objects, kinds=("rule",))}
-    assert asked == {"trash"}
+    asked = candidates(mind, STEPS, objects, kinds=("rule",))
+    assert {q.action for q in asked} == {"trash"}
+
+    for seed in range(1, 4):  # whose posteriors hold rules no object satisfies ("not isColored any")
+        mind = small_mind(seed, perms=1)
+        post = mind.posterior()
+        asked = candidates(mind, STEPS, objects, kinds=("rule",))
+        for q in asked:  # a rule no object may satisfy would surely be answered "yes"
+            assert q.rule is not None and any(holds(q.rule, owners, facts(mind, i)) for i in objects
+                                              for owners, w in owner_worlds(post[i]) if w > 0), q
 
 
 @pytest.mark.slow
