@@ -16,10 +16,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ownctl.logic.frame import Frame
-from ownctl.logic.prob import atom_truth, enumerate_worlds
+from ownctl.logic.prob import atom_truth, enumerate_worlds, other_probability
 from ownctl.logic.rules import ANY, Literal, Rule
 
 MAX_NAMED_AGENTS = 10
+#: (world, example) pairs of positive weight an Evidence enumerates at most: beyond, the agents least
+#: likely to own the examples are folded into the atom "owned by someone else" (docs/learning.md)
+MAX_PAIRS = 1 << 16
 #: truth values weighted at once by :meth:`Evidence.pair_prob` (a block of rows bounds its memory)
 PAIR_CELLS = 1 << 20
 
@@ -54,17 +57,41 @@ def _atoms(vocab: Vocabulary) -> tuple[Literal, ...]:
     return tuple(out)
 
 
+def pair_count(frame: Frame, named: Sequence[str]) -> int:
+    """How many (world, example) pairs of positive weight the worlds of the ``named`` agents (and the
+    atom "owned by someone else") have over ``frame``'s objects: 2 to the number of those atoms whose
+    probability is strictly between 0 and 1, summed over the objects (exact ownership: one each)."""
+    if not frame.n:
+        return 0
+    probs = np.array([*(frame.agent_column(a) for a in named), other_probability(frame, named)])
+    uncertain = ((probs > 0) & (probs < 1)).sum(axis=0)
+    return int(np.sum(np.exp2(uncertain)))
+
+
 class Evidence:
-    """The stored permissions of one action as a vectorised truth table."""
+    """The stored permissions of one action as a vectorised truth table.
+
+    Ownership atoms are enumerated for the agents that may own an example, at most
+    :data:`MAX_NAMED_AGENTS` of them and only as many as keep the pairs of positive weight within
+    :data:`MAX_PAIRS`, the most likely owners first; the others are folded into "owned by someone
+    else", which ``ownedBy any`` still counts and no learned rule can name (:attr:`folded`). Below
+    those limits every probability is exact.
+    """
 
     def __init__(self, frame: Frame, values: Sequence[float] | np.ndarray) -> None:
         self.frame = frame
         self.t = np.asarray(values, dtype=float).reshape(frame.n)
         mass = frame.own.sum(axis=0) if frame.n else np.zeros(len(frame.agents))
         named = [a for a, m in zip(frame.agents, mass, strict=True) if m > 0]
-        if len(named) > MAX_NAMED_AGENTS:
-            order = np.argsort(-np.array([mass[frame.agents.index(a)] for a in named]), kind="stable")
-            named = sorted(named[i] for i in order[:MAX_NAMED_AGENTS])
+        order = np.argsort(-np.array([mass[frame.agents.index(a)] for a in named]), kind="stable")
+        ranked = [named[i] for i in order]
+        k = min(len(ranked), MAX_NAMED_AGENTS)
+        while k > 0 and frame.n << (k + 1) > MAX_PAIRS and pair_count(frame, ranked[:k]) > MAX_PAIRS:
+            k -= 1  # (n 2^(k+1) bounds the pairs: only a store with many examples counts them)
+        #: whether some agent that may own an example was folded into "someone else"
+        self.folded = k < len(named)
+        if self.folded:
+            named = sorted(ranked[:k])
         self.worlds = enumerate_worlds(frame, tuple(named), with_other=True)
         self._cache: dict[Literal, np.ndarray] = {}
         self._rules: dict[Rule, np.ndarray] = {}
@@ -88,6 +115,7 @@ class Evidence:
         out.t = self.t[idx]
         w = self.worlds
         out.worlds = type(w)(w.atoms, w.bits, w.weights[:, idx], w.probs[:, idx])
+        out.folded = self.folded
         out._cache, out._rules, out._stacks = {}, {}, {}
         return out
 

@@ -30,7 +30,7 @@ from ownctl.learn import calibration, exact
 from ownctl.learn.algebra import merge_rule, rule_diff, specialising
 from ownctl.learn.calibration import calibrated
 from ownctl.learn.calibration import candidates as calibration_candidates
-from ownctl.learn.evidence import MAX_NAMED_AGENTS, Evidence, Vocabulary
+from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.model import Model, model_for
 from ownctl.learn.search import rule_search
 from ownctl.logic.kept import Kept
@@ -140,7 +140,7 @@ class Inducer:
         were re-induced before; else certified from the trace of the same examples without example
         ``new`` when one is known and the certificate holds; else computed."""
         canon, order, digests = exact.canonical_order(self.ev)
-        truncated = self.ev.worlds.atoms if len(self.ev.frame.agents) > MAX_NAMED_AGENTS else None
+        truncated = self.ev.worlds.atoms if self.ev.folded else None
         key = (self.action, tuple(given), tuple(self.atoms), truncated, self.model, self.cfg.max_conditions,
                MAX_RULES)
         full = (key, tuple(digests))
