@@ -7,7 +7,7 @@ speaker, whose next ``ownctl say`` is read as its answer.
 
 from __future__ import annotations
 
-from typing import Annotated
+from typing import Annotated, Any
 
 import typer
 
@@ -51,8 +51,7 @@ def ask(
     if speaker is not None:
         raise typer.BadParameter("--as only applies with --put")
     data = app.questions(app_ctx(ctx), task, names, top)
-    rows = [[q["text"], _mistakes(q["gain"]),
-             ", ".join(f"{a['answer']} ({a['p']:.2f})" for a in q["answers"])] for q in data["questions"]]
+    rows = [[q["text"], _mistakes(q["gain"]), _answers(q["answers"])] for q in data["questions"]]
     title = (f"{data['task']}: {data['expected_mistakes']:.2f} expected mistakes on "
              f"{len(data['objects'])} objects")
     listing = table(title, ["question", "gain", "answers (p)"], rows)
@@ -70,3 +69,14 @@ def _mistakes(value: float) -> str:
     """An expected number of mistakes to the thousandth (a gain within half of it of 0 is 0.000)."""
     text = f"{value:.3f}"
     return "0.000" if text == "-0.000" else text
+
+
+SHOWN_ANSWERS = 4  # the most probable answers a table row lists (--json has them all)
+
+
+def _answers(answers: list[dict[str, Any]]) -> str:
+    """The most probable answers with their probabilities, and how many more there are."""
+    ranked = sorted(answers, key=lambda a: -a["p"])
+    text = ", ".join(f"{a['answer']} ({a['p']:.2f})" for a in ranked[:SHOWN_ANSWERS])
+    rest = len(ranked) - SHOWN_ANSWERS
+    return f"{text} (+{rest} less likely)" if rest > 0 else text

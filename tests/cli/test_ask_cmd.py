@@ -205,3 +205,12 @@ def test_gains_are_shown_to_the_thousandth_of_a_mistake() -> None:
 
     assert [_mistakes(g) for g in (0.0237, -2.52e-06, 0.0, -0.5, 1.23456)] == [
         "0.024", "0.000", "0.000", "-0.500", "1.235"]
+
+
+def test_a_row_lists_the_most_probable_answers() -> None:
+    from ownctl.cli.ask_cmd import _answers
+
+    answers = [{"answer": f"owners {k}", "p": p} for k, p in enumerate((0.05, 0.5, 0.02, 0.3, 0.1, 0.03))]
+    assert _answers(answers) == ("owners 1 (0.50), owners 3 (0.30), owners 4 (0.10), owners 0 (0.05) "
+                                 "(+2 less likely)")
+    assert _answers(answers[:2]) == "owners 1 (0.50), owners 0 (0.05)"
