@@ -143,8 +143,9 @@ MAX_JOBS = 1024  # worker processes on one machine (a cluster is given by --sche
 
 def check_settings(trials: int, jobs: int, learner: str, scheduler: str | None = None,
                    decide: str = "map", seed: int = 0) -> None:
-    """BadValue / UnknownName for a trial count or job count below 1, a negative seed, an unknown
-    learner, both local jobs and a scheduler, or an unknown decision mode."""
+    """BadValue / UnknownName for a trial count outside 1..MAX_TRIALS or a job count outside
+    1..MAX_JOBS, a negative seed, an unknown learner, both local jobs and a scheduler, or an unknown
+    decision mode."""
     if not 1 <= trials <= MAX_TRIALS:
         raise BadValue(f"--trials must be an integer from 1 to {MAX_TRIALS:,}, got {trials}")
     if not 1 <= jobs <= MAX_JOBS:

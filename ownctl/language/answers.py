@@ -47,7 +47,7 @@ NO = ("no", "no you may not", "you may not", "no you can not", "you can not", "d
       "absolutely not", "certainly not", "definitely not", "not really", "by no means", "better not",
       "you must not", "you should not", "you are not allowed", "it is not allowed", "do not do that",
       "do not do it", "not true", "that is not true", "it is not true", "false", "wrong", "that is wrong",
-      "no it is not", "it is not", "not ok", "that is not ok", "it is not ok", "certainly not")
+      "no it is not", "it is not", "not ok", "that is not ok", "it is not ok")
 PARTLY = ("partly", "sometimes", "not always", "it depends", "in part", "only sometimes", "some of them",
           "partially", "in some cases", "depends")
 DONT_KNOW = ("i do not know", "do not know", "no idea", "i have no idea", "not sure", "i am not sure",
@@ -63,17 +63,17 @@ _CLAUSES = re.compile(r"[,.;:!?\u2013\u2014]+|\s-+\s")
 def reading(utterance: str) -> str | None:
     """``"yes"``, ``"no"``, ``"partly"`` or ``"unknown"`` when ``utterance`` is one such reply as a
     whole, or clause by clause with every clause the same one (courtesies aside); None otherwise."""
+    return _read(utterance)[0]
+
+
+def _read(utterance: str) -> tuple[str | None, bool]:
+    """:func:`reading`, and whether clauses of ``utterance`` say both yes and no ("yes... no")."""
     whole = _label(normalize(utterance))
     if whole is not None:
-        return whole
-    labels = _clause_labels(utterance)
-    return labels.pop() if len(labels) == 1 and None not in labels else None
-
-
-def _clause_labels(utterance: str) -> set[str | None]:
-    """The reply each clause of ``utterance`` is (None: a clause that is none), courtesies aside."""
+        return whole, False
     words = (normalize(clause) for clause in _CLAUSES.split(utterance))
-    return {_label(w) for w in words if w and w not in COURTESY}
+    labels = {_label(w) for w in words if w and w not in COURTESY}  # None: a clause that is no reply
+    return (next(iter(labels)) if len(labels) == 1 else None), {"yes", "no"} <= labels
 
 
 def _label(words: str) -> str | None:
@@ -87,14 +87,14 @@ def answer_instructions(utterance: str, question: Mapping[str, Any], ctx: Contex
                         ) -> tuple[Instruction, ...] | None:
     """The instructions ``utterance`` means as the answer to ``question`` (a pending question's
     ``{"kind", "object", "action", "rule"}``), or None if it is no answer to it."""
-    label = reading(utterance)
+    label, mixed = _read(utterance)
     if label == "unknown":  # an answer, which teaches nothing
         return ()
     kind = question.get("kind")
     if kind == "may":
         if label in ("yes", "no"):
             return (Permission(str(question["action"]), str(question["object"]), forbid=label == "no"),)
-        if {"yes", "no"} <= _clause_labels(utterance):  # "yes... no": no answer
+        if mixed:  # "yes... no": no answer
             return None
         return _permission(utterance, str(question["action"]), str(question["object"]), ctx)
     if kind == "rule":

@@ -83,8 +83,7 @@ class Evidence:
         self.t = np.asarray(values, dtype=float).reshape(frame.n)
         mass = frame.own.sum(axis=0) if frame.n else np.zeros(len(frame.agents))
         named = [a for a, m in zip(frame.agents, mass, strict=True) if m > 0]
-        order = np.argsort(-np.array([mass[frame.agents.index(a)] for a in named]), kind="stable")
-        ranked = [named[i] for i in order]
+        ranked = [frame.agents[j] for j in np.argsort(-mass, kind="stable")[: len(named)]]  # likeliest first
         k = min(len(ranked), MAX_NAMED_AGENTS)
         while k > 0 and frame.n << (k + 1) > MAX_PAIRS and pair_count(frame, ranked[:k]) > MAX_PAIRS:
             k -= 1  # (n 2^(k+1) bounds the pairs: only a store with many examples counts them)

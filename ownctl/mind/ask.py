@@ -646,9 +646,8 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
     default the last step) over those steps when there are two or more, and ``whose``; and
     ``rule`` on the ``top_rules`` rules of each step's posterior whose probability is nearest 1/2
     (not yet stated, not certain, holding for some of the objects; only for steps holding a
-    permission); probabilities on the
-    rule-set posteriors raised to ``temper``, ownership read through :func:`task_reading` with
-    ``read``."""
+    permission); probabilities on the rule-set posteriors raised to ``temper``, ownership read
+    through :func:`task_reading` with ``read``."""
     reading = task_reading(mind, steps) if read else IDENTITY
     exp = expected_mistakes(mind, steps, objects, temper, reading)
     order = sorted(range(len(exp.objects)), key=lambda k: (-round(float(exp.p_wrong[k]), 12), k))
