@@ -62,6 +62,8 @@ class PredictConfig:
     base_rate: float = 0.25  # prior ownership of an agent without claims (never 0.5)
     share_recency: bool = True  # an agent no claim says owns anything borrows recency from the others
     share_step: float = 0.25  # the borrowed recency slope is rounded to a multiple of this (logits)
+    recalibrate_min: int = 6  # from this many claims, the logits are rescaled on their leave-one-out fit
+    recalibrate_scale: float = 1.0  # prior std of that rescaling's slope (around 1) and intercept (around 0)
 
 
 @dataclass(frozen=True)

@@ -74,7 +74,7 @@ def test_a_model_fitted_around_an_offset_corrects_it_and_needs_it_to_predict() -
     p = (X[:, 0] > 0).astype(float)
     model = KernelOwnershipModel().fit(X, p, offset)
     logit = model.decision_function(X, offset)
-    assert np.allclose(logit - offset, model.decision_function(X, np.zeros(8)))
+    assert np.allclose(logit - model.rescale_[0] * offset, model.decision_function(X, np.zeros(8)))
     plain = KernelOwnershipModel().fit(X, p)
     assert not np.allclose(model.predict_proba(X, offset), plain.predict_proba(X))
     with pytest.raises(ValueError):
