@@ -103,23 +103,14 @@ class KernelOwnershipModel:
         if not self.trained_:
             return self
         cfg = self.cfg
-        n, d = X.shape
-        K = rbf_kernel(X, X, cfg.gamma)
-        design = np.hstack([K, X, np.ones((n, 1))])
-        m = design.shape[1]
-        penalty = np.zeros((m, m))
-        penalty[:n, :n] = K / cfg.C
-        penalty[n : n + d, n : n + d] = np.eye(d) / cfg.C
-        penalty[-1, -1] = 1.0 / cfg.intercept_scale**2
-        mean = np.zeros(m)
-        mean[-1] = _logit(cfg.base_rate)
-        shift = np.zeros(n) if offset is None else np.asarray(offset, dtype=float).reshape(n)
+        design, penalty, mean = _system(X, cfg)
+        shift = np.zeros(len(p)) if offset is None else np.asarray(offset, dtype=float).reshape(len(p))
         self.coef_ = _newton(design, p, penalty, mean, shift)
         self.support_ = X
         self.rescale_ = (1.0, 0.0)
-        if n >= cfg.recalibrate_min:
-            held = loo_logits(design, p, penalty, self.coef_, shift)
-            self.rescale_ = rescaling(held, p, cfg.recalibrate_scale)
+        if len(p) >= cfg.recalibrate_min:
+            self.rescale_ = rescaling(loo_logits(design, p, penalty, self.coef_, shift), p,
+                                      cfg.recalibrate_scale)
         return self
 
     def decision_function(self, X: np.ndarray, offset: np.ndarray | None = None) -> np.ndarray:
@@ -207,6 +198,22 @@ def rounded(slope: float, step: float) -> float:
     a claim in a large store rewrites the borrowers' priors only now and then (docs/architecture.md,
     section 5)."""
     return float(np.round(slope / step) * step) if step > 0 else slope
+
+
+def _system(X: np.ndarray, cfg: PredictConfig) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The fit's design ``[K, X, 1]`` over the claimed rows ``X``, its penalty (RKHS norm and
+    ``|w|^2`` over ``C``, the intercept's prior precision) and the prior mean of the coefficients."""
+    n, d = X.shape
+    K = rbf_kernel(X, X, cfg.gamma)
+    design = np.hstack([K, X, np.ones((n, 1))])
+    m = design.shape[1]
+    penalty = np.zeros((m, m))
+    penalty[:n, :n] = K / cfg.C
+    penalty[n : n + d, n : n + d] = np.eye(d) / cfg.C
+    penalty[-1, -1] = 1.0 / cfg.intercept_scale**2
+    mean = np.zeros(m)
+    mean[-1] = _logit(cfg.base_rate)
+    return design, penalty, mean
 
 
 def loo_logits(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, theta: np.ndarray,

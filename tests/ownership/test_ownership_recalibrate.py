@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 
 from ownctl.config import PredictConfig
-from ownctl.ownership.predict import KernelOwnershipModel, _sigmoid, loo_logits, rbf_kernel, rescaling
+from ownctl.ownership.predict import KernelOwnershipModel, _sigmoid, _system, loo_logits, rescaling
 
 RAW = replace(PredictConfig(), recalibrate_min=10**9)  # never recalibrates
 
@@ -26,22 +26,12 @@ def _problem(seed: int) -> tuple[np.ndarray, np.ndarray]:
     return X, (np.clip(0.8 * p + 0.1, 0.0, 1.0) if seed % 3 == 0 else p)
 
 
-def _design(X: np.ndarray, cfg: PredictConfig) -> tuple[np.ndarray, np.ndarray]:
-    n, d = X.shape
-    K = rbf_kernel(X, X, cfg.gamma)
-    penalty = np.zeros((n + d + 1, n + d + 1))
-    penalty[:n, :n] = K / cfg.C
-    penalty[n : n + d, n : n + d] = np.eye(d) / cfg.C
-    penalty[-1, -1] = 1.0 / cfg.intercept_scale**2
-    return np.hstack([K, X, np.ones((n, 1))]), penalty
-
-
 @pytest.mark.parametrize("seed", range(12))
 def test_leave_one_out_logits_are_much_closer_to_refits_than_the_fitted_logits(seed: int) -> None:
     X, p = _problem(seed)
     n = len(p)
     model = KernelOwnershipModel(RAW).fit(X, p)
-    design, penalty = _design(X, RAW)
+    design, penalty, _ = _system(X, RAW)
     approx = loo_logits(design, p, penalty, model.coef_, np.zeros(n))
     exact = np.array([KernelOwnershipModel(RAW).fit(X[np.arange(n) != i], p[np.arange(n) != i])
                       .decision_function(X[i : i + 1])[0] for i in range(n)])
