@@ -46,6 +46,30 @@ def test_leave_one_out_scores_are_refits_without_each_claim(seed: int) -> None:
         assert len(got) >= 6 and np.allclose(got, want, rtol=0, atol=1e-12)
 
 
+def test_beyond_ten_claims_each_score_is_a_refit_without_its_fold() -> None:
+    world = paper_blocks_world(np.random.default_rng(5), n_objects=40)
+    mind = Mind(world.agents, list(world.objects), world.areas)
+    truth = world.true_ownership()
+    for i in range(30):
+        for j, agent in enumerate(world.agents):
+            mind.claim(i, agent, float(truth[i, j]))
+    agent = world.agents[0]
+    got = loo_scores(mind, agent)
+    X, known = mind.features(agent)
+    idx = np.flatnonzero(known)
+    assert len(idx) == 30 and len(got) == 30
+    for fold in range(10):
+        held = np.arange(30) % 10 == fold
+        rest = idx[~held]
+        claims = mind.claims[rest, 0]
+        offset = mind.borrowed_term(agent, claims, X[:, -1])
+        model = KernelOwnershipModel(mind.settings.predict).fit(
+            X[rest], claims, None if offset is None else offset[rest])
+        p = model.predict_proba(X[idx[held]], None if offset is None else offset[idx[held]])
+        want = np.where(mind.claims[idx[held], 0] >= 0.5, 1.0 - p, p)
+        assert np.allclose(got[held], want, rtol=0, atol=1e-12)
+
+
 def test_an_agent_without_claims_has_no_scores_and_keeps_both_labels() -> None:
     mind, _, _ = protocol(paper_blocks_world, OWNERSHIP_CONDITIONS[0], "ours", np.random.default_rng(0))
     mind.claims[:, 0] = np.nan
