@@ -228,7 +228,11 @@ def loo_logits(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, theta: np
     s = _sigmoid(f)
     w = s * (1.0 - s)
     hess = design.T @ (design * w[:, None]) + penalty + 1e-9 * np.eye(len(theta))
-    q = np.einsum("ij,ji->i", design, np.linalg.lstsq(hess, design.T, rcond=None)[0])
+    # d_i' H^+ d_i from one symmetric eigendecomposition (H's pseudo-inverse, as _newton's lstsq
+    # takes it: eigenvalues below the same relative cut-off count as 0)
+    values, vectors = np.linalg.eigh(hess)
+    keep = values > values.max() * np.finfo(float).eps * len(values)
+    q = np.sum((design @ vectors[:, keep]) ** 2 / values[keep], axis=1)
     out: np.ndarray = f + (s - p) * q / np.maximum(1.0 - w * q, 1e-12)
     return out
 
