@@ -28,7 +28,6 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Sequence
-from concurrent.futures import ProcessPoolExecutor
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -36,6 +35,7 @@ import numpy as np
 
 from ownctl.config import ASK_AHEAD, ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMPER, LearnConfig, Settings
 from ownctl.errors import BadValue, UnknownName
+from ownctl.experiment.cluster import executor
 from ownctl.experiment.kinematic import KinematicExecutor
 from ownctl.experiment.online import TASK_CONDITIONS
 from ownctl.experiment.oracle import OracleInstructor
@@ -310,7 +310,7 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
                 progress(len(done), len(units))
     else:
         size = max(1, math.ceil(len(units) / (jobs * 4)))
-        with ProcessPoolExecutor(max_workers=jobs) as pool:
+        with executor(jobs) as (pool, _):
             futures = [pool.submit(_chunk, units[i : i + size], seed, policy)
                        for i in range(0, len(units), size)]
             for fut in futures:

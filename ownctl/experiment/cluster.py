@@ -10,6 +10,7 @@ ownctl importable.
 
 from __future__ import annotations
 
+import os
 from collections.abc import Iterator
 from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
@@ -32,11 +33,21 @@ def executor(jobs: int, scheduler: str | None = None,
     :data:`CONNECT_TIMEOUT`), is an :class:`~ownctl.errors.OwnctlError` of one line.
     """
     if scheduler is None:
-        with ProcessPoolExecutor(max_workers=jobs) as pool:
+        with ProcessPoolExecutor(max_workers=jobs, initializer=share_cores, initargs=(jobs,)) as pool:
             yield pool, jobs
         return
     with _dask(scheduler, CONNECT_TIMEOUT if timeout is None else timeout) as (pool, slots):
         yield pool, slots
+
+
+def share_cores(jobs: int) -> None:
+    """Start of a local worker: the threads of its linear algebra (BLAS, OpenMP) limited to its
+    share of the machine's cores. Each of ``jobs`` workers would otherwise start a thread per core
+    for every large enough matrix, and on a machine with as many workers as cores those threads
+    wait on one another (docs/architecture.md, section 8)."""
+    from threadpoolctl import threadpool_limits
+
+    threadpool_limits(max(1, (os.cpu_count() or 1) // max(jobs, 1)))
 
 
 @contextmanager
