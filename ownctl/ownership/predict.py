@@ -114,7 +114,9 @@ class KernelOwnershipModel:
         return self
 
     def decision_function(self, X: np.ndarray, offset: np.ndarray | None = None) -> np.ndarray:
-        """The logit f(x) for each row of ``X`` (n,), plus ``offset`` (n,) for a model fitted with one."""
+        """The logit for each row of ``X`` (n,): ``a (f(x) + offset) + b``, with ``offset`` (n,) for a
+        model fitted with one and ``(a, b)`` its rescaling (:attr:`rescale_`; (1, 0) below
+        ``recalibrate_min`` claims)."""
         X = np.asarray(X, dtype=float)
         design = np.hstack([rbf_kernel(X, self.support_, self.cfg.gamma), X, np.ones((len(X), 1))])
         slope, intercept = self.rescale_
