@@ -13,7 +13,9 @@ for objects that carry permissions while inference is on; elsewhere the prior st
 only where one of them is held; the priors (the prediction, with its source: ``prediction`` or
 ``base-rate``) are packed per agent in chunks of object ids (``ownctl/store/packed.py``). A
 permission holds its arrival rank and the object's percepts when it was given. A rule row holds its
-text, origin (given, learned, allow), provenance and rank.
+text, origin (given, learned, allow), provenance and rank. The setting ``predict.version`` names the
+predictor that wrote the priors; a store another version wrote is loaded whole, every predictor is
+refitted, and the next write stores the new priors and the version.
 """
 
 from __future__ import annotations
@@ -30,11 +32,14 @@ from ownctl.learn.evidence import Vocabulary
 from ownctl.logic.rules import Rule, parse_norm, parse_rule
 from ownctl.logic.vocab import ACTIONS
 from ownctl.mind import SWITCHES, ClaimInfo, Given, Mind, RuleInfo, Switches
+from ownctl.ownership.predict import PREDICTOR_VERSION
 from ownctl.world.model import Area, ObjectSpec
 
 #: The store key of :attr:`Mind.lent`, the borrowed slope the borrowers' stored priors use (an internal
 #: value, not a setting of ``ownctl config``).
 LENT = "predict.lent"
+#: The store key of the predictor version that wrote the stored priors (``PREDICTOR_VERSION``).
+VERSION = "predict.version"
 
 if TYPE_CHECKING:
     from ownctl.app.context import AppContext
@@ -100,6 +105,7 @@ class _Base:
     switches: dict[str, bool]
     lent: float | None  # the slope the borrowers' stored priors use (Mind.lent)
     layout: int  # the Mind's layout when this was taken (same layout: same objects and agents)
+    version: int | None = PREDICTOR_VERSION  # the predictor that wrote the stored priors (None: another)
 
 
 def _rules_state(mind: Mind) -> dict[str, list[tuple[str, str, Any]]]:
@@ -205,6 +211,9 @@ class Stored:
                 tx.meta.set_setting(key, value or None)
         if mind.lent != base.lent:
             tx.meta.set_setting(LENT, mind.lent)
+        if base.version != PREDICTOR_VERSION:
+            tx.meta.set_setting(VERSION, PREDICTOR_VERSION)
+            base.version = PREDICTOR_VERSION
         if same:
             self._follow(edited, respecified, post)
         else:
@@ -440,7 +449,11 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     touches and beliefs, and every belief about the objects that carry permissions (what inference
     reads); the Mind may then refit only their predictors (a claim about one agent).
     """
-    refit, stored = agents, tx.meta.settings()
+    stored = tx.meta.settings()
+    outdated = str(stored.get(VERSION)) != str(PREDICTOR_VERSION)
+    if outdated:  # priors another predictor wrote: every agent is refitted, which needs every object
+        only, permitted, agents = None, False, None
+    refit = agents
     known = tx.world.agents()
     agent_ids = {a.name: a.id for a in known}
     names = {a.id: a.name for a in known}
@@ -522,6 +535,9 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     held = np.flatnonzero(~np.isnan(stored_post).all(axis=1))
     out.base.prior = prior
     out.base.posterior = {specs[i].name: stored_post[i] for i in held.tolist()}
+    if outdated:
+        mind.refit_all()
+        out.base.version = None
     return out
 
 

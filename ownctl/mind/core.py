@@ -367,6 +367,11 @@ class Mind:
             self._edited.update(borrowers)
         self.lent = current
 
+    def refit_all(self) -> None:
+        """Refit every agent's predictor when its priors are next needed (priors restored from a
+        store that another version of the predictor wrote; needs every object)."""
+        self._stale_agents(self.agents)
+
     def _stale_agents(self, agents: Iterable[str]) -> None:
         fresh = set(agents)
         self._edited.update(fresh)

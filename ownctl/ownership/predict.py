@@ -51,6 +51,11 @@ from ownctl.config import PredictConfig
 
 MAX_NEWTON = 50
 TOLERANCE = 1e-10
+#: Raised whenever what the predictor computes from the same claims and percepts changes (2: the
+#: recalibration on claims left out). A store whose priors another version wrote refits them on
+#: its next load (ownctl/app/mindstore.py), so a store keeps meaning what a Mind told the same
+#: things would believe.
+PREDICTOR_VERSION = 2
 
 
 def _sigmoid(z: np.ndarray) -> np.ndarray:
