@@ -5,7 +5,9 @@
 * ``uncover_example``: an allow permission the rules forbid -> specialise each covering rule so it
   excludes the example and subtract the specialisation.
 * ``cover_rule``: a given forbid norm -> specialise it against the allowed examples (Gricean), add.
-* ``uncover_rule``: a given allow norm -> specialise it against the forbidden examples, subtract it.
+* ``uncover_rule``: a given allow norm -> specialise it against the forbidden examples, subtract it
+  (the paper's; ours subtracts the norm as said and re-induces under it, as every later
+  permission does).
 
 Two learners share the entry points (``LearnConfig.learner``):
 
@@ -32,8 +34,10 @@ from ownctl.learn.calibration import calibrated
 from ownctl.learn.calibration import candidates as calibration_candidates
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.model import Model, model_for
-from ownctl.learn.search import rule_search
+from ownctl.learn.search import Filter, rule_search
+from ownctl.logic.frame import Frame
 from ownctl.logic.kept import Kept
+from ownctl.logic.prob import describes_some
 from ownctl.logic.rules import ANY, Norm, Rule
 
 MAX_RULES = 5  # ours: rules re-induction may add to the given ones
@@ -155,8 +159,9 @@ class Inducer:
         return _traces.put(full, trace)
 
     # -- Algorithms 3 and 4 ------------------------------------------------------------------
-    def cover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
-        """Add a given forbid rule, specialised against the allowed examples."""
+    def cover_rule(self, rules: list[Rule], given: Rule, world: Frame | None = None) -> list[Rule]:
+        """Add a given forbid rule, specialised against the allowed examples, never into a rule that
+        holds for none of ``world``'s objects (:func:`somewhere`)."""
         if any(r.conditions <= given.conditions for r in rules):
             return rules
         neg = ~self.ev.positives
@@ -166,25 +171,42 @@ class Inducer:
             return excess
 
         threshold = self.cfg.rule_tolerance * neg.sum()
-        result = rule_search(self.ev, given, self.atoms, score, threshold, (), self.cfg.beam,
-                             self.cfg.max_conditions, stop_at_success=True)
+        result = rule_search(self.ev, given, self.atoms, score, threshold, somewhere(given, world),
+                             self.cfg.beam, self.cfg.max_conditions, stop_at_success=True)
         if result.success:
             return self._merge(rules, result.rule)
         # ours trusts the instructor: a norm no specialisation reconciles with the examples is kept as said
         return self._merge(rules, given) if self.ours else rules
 
-    def uncover_rule(self, rules: list[Rule], given: Rule) -> list[Rule]:
-        """Subtract a given allow rule, first specialised against the forbidden examples."""
+    def uncover_rule(self, rules: list[Rule], given: Rule, world: Frame | None = None) -> list[Rule]:
+        """The paper's: subtract a given allow rule, first specialised against the forbidden
+        examples, never into a rule that holds for none of ``world``'s objects (:func:`somewhere`)."""
         pos = self.ev.positives
 
         def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
             kept: np.ndarray = np.minimum(self.ev.prob(truths)[:, pos], self.ev.t[pos]).sum(axis=1)
             return kept
 
-        result = self._search(given, score, self.cfg.rule_tolerance * pos.sum())
+        result = self._search(given, score, self.cfg.rule_tolerance * pos.sum(), somewhere(given, world))
         if not result.success and not self.ours:
             return rules
         return subtract(rules, result.rule if result.success else given, self._merge)
+
+
+def somewhere(said: Rule, world: Frame | None) -> tuple[Filter, ...]:
+    """The search filter that keeps the specialisations of a stated norm ``said`` that may still
+    hold for some object of ``world`` (the robot's objects). Without it, a norm the examples
+    contradict is "specialised" into one that describes nothing: "forbid pickUp if ownedBy ana"
+    became "... and not isColored any" where every object has a colour, which satisfies the
+    examples by forbidding nothing. None when ``world`` is unknown, or when ``said`` itself
+    holds for none of its objects (a norm about things the robot has not met yet)."""
+    if world is None or not describes_some(said, world):
+        return ()
+
+    def keep(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
+        return np.array([describes_some(c, world) for c in cands], dtype=bool)
+
+    return (keep,)
 
 
 def calibration_choices(action: str, ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
@@ -300,28 +322,37 @@ def learn_permission(
 
 def learn_norm(
     norm: Norm, rules: Sequence[Rule], ev: Evidence, vocab: Vocabulary, cfg: LearnConfig,
-    allows: Sequence[Rule] = (), given: Sequence[Rule] = (),
+    allows: Sequence[Rule] = (), given: Sequence[Rule] = (), world: Frame | None = None,
 ) -> Outcome:
-    """One-shot instruction of a forbid (cover rule) or allow (uncover rule) norm.
+    """One-shot instruction of a forbid (cover rule) or allow (uncover rule) norm; ``world``: the
+    robot's objects, which a stated norm is never specialised into describing none of.
 
     ``given`` are the current rules that instructors stated (or their pieces). The ``ours`` learner
     lets a given forbid norm replace guesses: the norm is added (specialised only as far as the
     examples demand) to the given rules, and the learned rules are re-induced around them, so a rule
     learned from one example ("forbid trash" after one forbidden trash) gives way to the norm that
-    explains it. Earlier allow norms stay in force. The paper's learner ignores a norm an active rule
-    already covers.
+    explains it. An allow norm is subtracted from the given rules as said and joins the allow norms
+    the learned rules are re-induced under, exactly as every later permission re-induces them, so
+    the rules do not depend on whether the norm came before or after the permissions (a forbidden
+    example it covers is an exception). Earlier allow norms stay in force. The paper's learner
+    ignores a norm an active rule already covers, and specialises an allow norm against the
+    forbidden examples before subtracting it.
     """
     accuracy = ev.soft_accuracy(rules)
     ind = Inducer(norm.rule.action, ev, vocab, cfg)
     stated = [r for r in rules if r in set(given)]
+    if ind.ours:
+        if norm.sign == "forbid":
+            said, allowing = ind.cover_rule(stated, norm.rule, world), list(allows)
+        else:
+            said = subtract(stated, norm.rule, ind._merge)
+            allowing = list(dict.fromkeys([*allows, norm.rule]))
+        best, trace = calibrated_inducer(norm.rule.action, ev.beyond(allowing)[0], vocab, cfg, said)
+        current = best.reinduce(said, allowing, trace)
+        return Outcome(tuple(current), True, accuracy, tuple(specialising(said, current)))
     if norm.sign == "forbid":
-        if ind.ours:
-            said = ind.cover_rule(stated, norm.rule)
-            best, trace = calibrated_inducer(norm.rule.action, ev.beyond(allows)[0], vocab, cfg, said)
-            current = best.reinduce(said, allows, trace)
-            return Outcome(tuple(current), True, accuracy, tuple(specialising(said, current)))
-        current = ind.cover_rule(list(rules), norm.rule)
+        current = ind.cover_rule(list(rules), norm.rule, world)
         fresh = [r for r in current if r not in rules]
         return Outcome(tuple(current), True, accuracy, tuple([*stated, *fresh]))
-    current = ind.uncover_rule(list(rules), norm.rule)
+    current = ind.uncover_rule(list(rules), norm.rule, world)
     return Outcome(tuple(current), True, accuracy, tuple(specialising(stated, current)))

@@ -129,3 +129,10 @@ def p_forbidden(rules: Sequence[Rule], frame: Frame) -> np.ndarray:
     truth = rule_truth(rules, frame, worlds)
     out: np.ndarray = np.clip((worlds.weights * truth).sum(axis=0), 0.0, 1.0)
     return out
+
+
+def describes_some(rule: Rule, frame: Frame) -> bool:
+    """Whether ``rule`` may hold for some object of ``frame``. One that holds for none ("forbid find
+    if not inArea any" where every object is in an area, "ownedBy ana and not isColored any" where
+    every object has a colour) says nothing about these objects."""
+    return bool((p_forbidden([rule], frame) > 0).any())

@@ -35,9 +35,9 @@ from ownctl.logic.kept import Kept
 from ownctl.logic.prob import (
     OTHER,
     Worlds,
+    describes_some,
     each_rule_truth,
     enumerate_worlds,
-    p_forbidden,
     relevant_atoms,
     rule_truth,
 )
@@ -672,17 +672,10 @@ def candidates(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
                 continue
             given = set(mind.given(s))
             probs = [(r, p) for r, p in _posterior(mind, s, temper).rule_probabilities().items()
-                     if r not in given and 0.01 < p < 0.99 and _describes_some(r, frame)]
+                     if r not in given and 0.01 < p < 0.99 and describes_some(r, frame)]
             probs.sort(key=lambda rp: (abs(rp[1] - 0.5), len(rp[0].literals), rp[0].text()))
             out += [Question("rule", action=s, rule=r) for r, _ in probs[:top_rules]]
     return out
-
-
-def _describes_some(rule: Rule, frame: Frame) -> bool:
-    """Whether ``rule`` may hold for some object of ``frame``: one that holds for none ("forbid find
-    if not inArea any" where every object is in an area) is surely answered "yes" and teaches
-    nothing about these objects."""
-    return bool((p_forbidden([rule], frame) > 0).any())
 
 
 def horizon(question: Question, names: Sequence[str]) -> int:

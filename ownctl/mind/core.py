@@ -777,7 +777,8 @@ class Mind:
         kept = self._keep_posteriors(action)
         ev, idx = self.evidence(action)
         before, old_given = self.rules[action], self.given(action)
-        out = learn_norm(norm, before, ev, self.vocab, self.settings.learn, self.allows[action], old_given)
+        out = learn_norm(norm, before, ev, self.vocab, self.settings.learn, self.allows[action], old_given,
+                         self.frame())
         said: dict[Rule, dict[str, Any]] = {}
         for r in out.given:
             if r in old_given:

@@ -18,7 +18,7 @@ from ownctl.learn.induce import learn_permission
 from ownctl.learn.model import model_for, rule_counts
 from ownctl.logic.frame import Frame
 from ownctl.logic.prob import atom_truth
-from ownctl.logic.rules import Literal, Rule
+from ownctl.logic.rules import Literal, Rule, parse_norm
 from ownctl.mind import Mind, Switches
 from ownctl.world.model import Area, ObjectSpec
 
@@ -172,9 +172,16 @@ def learned(rows, order, forget: bool) -> dict[str, frozenset[Rule]]:
         mind.claim(i, "a1", p1)
         mind.claim(i, "a2", p2)
     for action, i in order:
+        if action == "say":  # an allow norm, by its index in ALLOWS
+            mind.instruct(parse_norm(ALLOWS[i]))
+            continue
         value = rows[i][4] if action == "trash" else float(rows[i][2] == "red" or rows[i][0] == 1.0)
         mind.permit(action, i, value)
     return {a: frozenset(mind.rules[a]) for a in ("trash", "pickUp")}
+
+
+ALLOWS = ("allow trash if isColored red", "allow trash if inArea desk", "allow trash if ownedBy a2",
+          "allow pickUp if isColored green", "allow pickUp if not ownedBy a1")
 
 
 def _order_case(rows, data, forget: bool) -> None:
@@ -195,6 +202,19 @@ def test_the_rules_do_not_depend_on_the_order_permissions_arrive_in(rows, data, 
 @given(examples, st.data(), st.booleans())
 def test_the_rules_do_not_depend_on_the_order_permissions_arrive_in_at_length(rows, data, forget) -> None:
     _order_case(rows, data, forget)
+
+
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(examples, st.data(), st.sampled_from(range(len(ALLOWS))))
+def test_an_allow_norm_teaches_the_same_rules_before_among_or_after_the_permissions(rows, data, norm) -> None:
+    """An allow norm said after permissions it contradicts was once specialised against them (and
+    into one that holds for nothing: "isColored blue and not inArea any"), while every later
+    permission re-induced under the norm as said: the rules depended on when it was said."""
+    perms = [(a, i) for i in range(len(rows)) for a in ("trash", "pickUp")]
+    reference = learned(rows, [("say", norm), *perms], True)
+    shuffled = data.draw(st.permutations(perms))
+    at = data.draw(st.integers(0, len(shuffled)))
+    assert learned(rows, [*shuffled[:at], ("say", norm), *shuffled[at:]], True) == reference
 
 
 @given(st.sampled_from(COLOURS), st.booleans(), st.sampled_from(OWNERSHIP))

@@ -16,10 +16,10 @@ from ownctl.config import LearnConfig, Settings
 from ownctl.learn.evidence import Evidence, Vocabulary
 from ownctl.learn.induce import Inducer, learn_norm, learn_permission, subtract
 from ownctl.logic.frame import Frame
-from ownctl.logic.prob import p_forbidden
+from ownctl.logic.prob import describes_some, p_forbidden
 from ownctl.logic.rules import Literal, Rule, implies, parse_norm, parse_rule
 from ownctl.mind import Mind
-from ownctl.world.model import ObjectSpec
+from ownctl.world.model import Area, ObjectSpec
 
 LEARNERS = ("paper", "ours")
 AGENTS = ("agent1", "agent2", "agent3")
@@ -158,13 +158,36 @@ def test_cover_rule_keeps_a_given_rule_without_negatives_and_skips_a_covered_one
 
 
 @pytest.mark.parametrize("learner", LEARNERS)
+def test_a_stated_norm_is_never_specialised_into_one_that_describes_no_object(learner: str) -> None:
+    """Every a1 object, of every colour, was allowed; "forbid pickUp if ownedBy a1" then became
+    "ownedBy a1 and not isColored any" (and an allow norm "... and not inArea any"): rules that
+    satisfy the examples by describing none of the robot's objects."""
+    desk = Area("desk", (-1.0, -1.0, 1.0, 1.0))
+    colours = ["red", "blue", "green", "red", "blue", "green"]
+    objs = [ObjectSpec(f"o{i}", c, (0.1 * i, 0.0, 0.0)) for i, c in enumerate(colours)]
+    m = Mind(("a1", "a2"), objs, (desk,), Settings(learn=LearnConfig(learner=learner)))
+    for i in range(6):
+        m.claim(i, "a1", float(i < 3))
+        m.claim(i, "a2", float(i >= 3))
+        m.permit("pickUp", i, float(i == 3))
+    m.instruct(parse_norm("forbid pickUp if ownedBy a1"))
+    m.instruct(parse_norm("allow pickUp if isColored red"))
+    for rule in m.rules["pickUp"]:
+        assert describes_some(rule, m.frame()), rule.text()
+    if learner == "ours":  # trusts the instructor: no specialisation reconciles the norm, so it stays as said
+        assert "forbid pickUp if ownedBy a1 and not isColored red" in texts(m.given("pickUp"))
+
+
+@pytest.mark.parametrize("learner", LEARNERS)
 def test_uncover_rule_subtracts_an_allow_norm(learner: str) -> None:
     """Reference 3.5, verified on the original: forbid if owned, then allow if red."""
     ev, vocab = evidence([], [], [])
     cfg = LearnConfig(learner=learner)
     first = learn_norm(parse_norm("forbid trash if ownedBy any"), (), ev, vocab, cfg)
-    out = learn_norm(parse_norm("allow trash if isColored red"), first.rules, ev, vocab, cfg)
+    out = learn_norm(parse_norm("allow trash if isColored red"), first.rules, ev, vocab, cfg,
+                     given=first.given)
     assert texts(out.rules) == ["forbid trash if ownedBy any and not isColored red"]
+    assert texts(out.given) == texts(out.rules)  # the said norm's piece is still a given rule
 
 
 @pytest.mark.parametrize("learner", LEARNERS)
