@@ -22,17 +22,20 @@ if TYPE_CHECKING:
 def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str, Any]:
     """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}]}``, likeliest
     first; ``p`` and ``source`` are the decision belief. With ``coverage``, each owner row also has
-    ``"conformal"``: its split-conformal set over {owns, does not own} (docs/asking.md, section 7)."""
+    ``"conformal"``: its split-conformal set over {owns, does not own} (docs/asking.md, section 7),
+    and ``"claims_needed"`` says how many claimed objects an agent needs before its sets can leave
+    a label out."""
     with ctx.read() as tx:
         data: dict[str, Any] = {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id)}
         if coverage is not None:
-            from ownctl.mind.conformal import check_coverage, prediction_sets
+            from ownctl.mind.conformal import check_coverage, claims_needed, prediction_sets
 
             check_coverage(coverage)
             sets = {s.agent: s.as_dict() for s in prediction_sets(load(tx, ctx.now).mind, obj, coverage)}
             for row in data["owners"]:
                 row["conformal"] = sets[row["agent"]]
             data["coverage"] = coverage
+            data["claims_needed"] = claims_needed(coverage)
         return data
 
 

@@ -94,11 +94,23 @@ def owners(
     cells = [
         [o["agent"], o["p"], o["source"], o["claim"], o["prior"], o["posterior"]] for o in data["owners"]
     ]
+    note = ""
     if coverage is not None:
         columns.append(f"set ({coverage:g})")
         for row, o in zip(cells, data["owners"], strict=True):
             row.append(" or ".join(o["conformal"]["set"]) or "(empty)")
-    emit(data, json_out, quiet, table(f"owners of {obj}", columns, cells))
+        few = [o["agent"] for o in data["owners"] if o["conformal"]["calibration"] < data["claims_needed"]]
+        if few:
+            note = (f"{', '.join(few)}: fewer than {data['claims_needed']} claimed objects, too few for "
+                    f"coverage {coverage:g}; their sets hold both labels unless claimed")
+    shown = table(f"owners of {obj}", columns, cells)
+
+    def human() -> None:
+        shown()
+        if note:
+            typer.echo(note)
+
+    emit(data, json_out, quiet, human)
 
 
 @rules.command("list")

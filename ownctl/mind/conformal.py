@@ -80,6 +80,17 @@ def threshold(scores: np.ndarray, coverage: float) -> float:
     return 1.0 if rank > n else float(np.sort(scores)[rank - 1])
 
 
+def claims_needed(coverage: float) -> int:
+    """The fewest calibration scores with which a set can leave a label out at ``coverage``: the
+    smallest ``n`` with ``ceil((n + 1) coverage) <= n`` (9 at 0.9, 19 at 0.95). With fewer, every
+    unclaimed pair's set holds both labels."""
+    coverage = check_coverage(coverage)
+    n = 1
+    while math.ceil((n + 1) * coverage) > n:
+        n += 1
+    return n
+
+
 def label_set(p: float, q: float) -> tuple[str, ...]:
     """Every label whose score ``1 - P(label)`` is at most ``q`` (owns first)."""
     return tuple(label for label, score in ((OWNS, 1.0 - p), (NOT, p)) if score <= q + 1e-12)

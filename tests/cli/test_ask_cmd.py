@@ -195,9 +195,12 @@ def test_owners_with_coverage_gives_a_set_per_agent(world: Ownctl) -> None:
     for obj, agent in (("wallet", "alexis"), ("cup", "xuan"), ("key", "xuan")):
         world("claim", obj, agent)
     data = world.json("owners", "can", "--coverage", "0.9")
-    assert data["coverage"] == 0.9
+    assert data["coverage"] == 0.9 and data["claims_needed"] == 9
     for row in data["owners"]:
         assert set(row["conformal"]["set"]) <= {"owns", "does not own"} and row["conformal"]["set"]
+    # two claims each at most: the table says why every set holds both labels
+    assert "fewer than 9 claimed objects, too few for coverage 0.9" in world("owners", "can", "--coverage",
+                                                                             "0.9").stdout
 
 
 def test_gains_are_shown_to_the_thousandth_of_a_mistake() -> None:

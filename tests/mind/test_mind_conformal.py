@@ -14,7 +14,7 @@ import pytest
 
 from ownctl.experiment.calibration import calibration, ece, reliability
 from ownctl.experiment.ownership import OWNERSHIP_CONDITIONS, protocol
-from ownctl.mind.conformal import NOT, OWNS, label_set, loo_scores, threshold
+from ownctl.mind.conformal import NOT, OWNS, claims_needed, label_set, loo_scores, threshold
 from ownctl.mind.core import Mind
 from ownctl.ownership.predict import KernelOwnershipModel
 from ownctl.world.generator import paper_blocks_world
@@ -88,6 +88,14 @@ def test_the_threshold_is_the_smallest_score_covering_its_rank(n: int) -> None:
             assert q == 1.0
         else:  # the least q with at least `need` scores at or below it
             assert np.sum(scores <= q) >= need and np.sum(scores < q) < need
+
+
+@pytest.mark.parametrize("coverage", [0.5, 0.8, 0.9, 0.95, 0.975])
+def test_claims_needed_is_the_fewest_scores_below_which_every_set_holds_both_labels(coverage: float) -> None:
+    need = claims_needed(coverage)
+    assert need == {0.5: 1, 0.8: 4, 0.9: 9, 0.95: 19, 0.975: 39}[coverage]
+    assert threshold(np.full(need - 1, 0.01), coverage) == 1.0  # one short: q = 1, both labels stay
+    assert threshold(np.full(need, 0.01), coverage) == 0.01
 
 
 def test_a_label_is_in_the_set_when_its_score_is_within_the_threshold() -> None:
