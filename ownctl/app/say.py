@@ -47,6 +47,7 @@ from ownctl.language.context import Facts
 from ownctl.language.lexicon import COLORS
 from ownctl.logic.names import check_name
 from ownctl.logic.prob import noisy_or
+from ownctl.logic.rules import parse_norm
 from ownctl.world.model import Area
 
 
@@ -176,6 +177,10 @@ class _Turn:
         from ownctl.app.instruct import add_norm
 
         done = add_norm(self.ctx, ins.norm.text(), self.report.speaker)
+        if done.data["specialised"]:  # the stored permissions narrowed what was said: say so
+            taken = [NormInstruction(parse_norm(t)).say() for t in done.data["taken_as"]]
+            self.report.answers.append(f"Some of my permissions say otherwise, so I take it as: "
+                                       f"{'; '.join(taken)}.")
         return done.message, done.data
 
     def _introduce(self, ins: Introduce) -> tuple[str, dict[str, Any]]:

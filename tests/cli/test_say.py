@@ -231,3 +231,21 @@ def test_a_norm_said_in_the_rule_language_is_that_norm(table_world: Ownctl) -> N
     error = table_world("say", "forbid trash if ownedBy ghost", code=1).stderr
     assert "unknown agent 'ghost'" in error and error.count("\n") == 1
     assert table_world.digest() == before
+
+
+def test_a_norm_the_permissions_narrow_is_acknowledged_as_narrowed(table_world: Ownctl) -> None:
+    """Trash was allowed on the wallet (brown, on the desk) and the pen (no colour, nowhere): "don't
+    throw away the red things" is taken as said, "never throw anything away" only as what those
+    permissions leave of it, and the reply says so."""
+    table_world("allow", "trash", "on", "wallet")
+    table_world("allow", "trash", "on", "pen")
+    kept = table_world.json("say", "Don't throw away the red things")
+    assert kept["results"][0]["data"]["taken_as"] == ["forbid trash if isColored red"]
+    assert not kept["results"][0]["data"]["specialised"] and "take it as" not in kept["reply"]
+    out = table_world.json("say", "Never throw anything away")
+    data = out["results"][0]["data"]
+    assert data["specialised"] and data["taken_as"] and "forbid trash" not in data["taken_as"]
+    assert out["reply"].startswith("Understood: I will not throw away anything.")
+    assert "Some of my permissions say otherwise, so I take it as: I will not throw away anything " in (
+        out["reply"])
+    assert {r["text"] for r in table_world.json("rules", "list")} >= set(data["taken_as"])
