@@ -37,8 +37,10 @@ def distinct_rows(table: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
 def unions(truth: np.ndarray, index: np.ndarray) -> np.ndarray:
     """(K, ...) disjunction of the rows ``index[k]`` of ``truth``, whose last row is all false (so
     that -1 pads a smaller set)."""
-    out = np.zeros((len(index), *truth.shape[1:]), dtype=bool)
-    for c in range(index.shape[1]):
+    if not index.shape[1]:
+        return np.zeros((len(index), *truth.shape[1:]), dtype=bool)
+    out: np.ndarray = truth[index[:, 0]]  # a copy (fancy indexing), then or-ed in place
+    for c in range(1, index.shape[1]):
         out |= truth[index[:, c]]
     return out
 

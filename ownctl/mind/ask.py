@@ -318,7 +318,9 @@ def step_forbidden(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarra
         return hit[1]
     table, which = _set_tables(rp, frame, worlds)
     mass = np.bincount(which, rp.probabilities, len(table))  # each distinct disjunction's probability
-    out: np.ndarray = np.clip(np.einsum("u,uwn->wn", mass, table.astype(float)), 0.0, 1.0)
+    # einsum casts the boolean table in its buffers: the same sums, without a float copy of the
+    # (U, W, n) table (which, on a store of 2,000 objects, took most of `ownctl ask`'s time)
+    out: np.ndarray = np.clip(np.einsum("u,uwn->wn", mass, table), 0.0, 1.0)
     out.setflags(write=False)
     _FORBIDDEN.put(key, (rp, out))
     return out
