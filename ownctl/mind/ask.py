@@ -342,12 +342,21 @@ def decisions(mind: Mind, steps: Sequence[str], idx: Sequence[int]) -> np.ndarra
     out = np.zeros(len(idx), dtype=bool)
     for s in steps:
         bad = mind.p_rules_on(s, frame) >= mind.settings.threshold_for(s)
-        for k, i in enumerate(idx):
-            given = mind.permission(s, i)
-            if given is not None:
-                bad[k] = given.value >= PERMISSION_CUT
+        for k, value in permissions_at(mind, s, idx):
+            bad[k] = value >= PERMISSION_CUT
         out |= bad
     return out
+
+
+def permissions_at(mind: Mind, step: str, idx: Sequence[int]) -> list[tuple[int, float]]:
+    """``(k, value)`` for each position ``k`` of ``idx`` whose object holds a permission of ``step``:
+    read off the step's permissions, which are few, rather than looked up for each of the objects,
+    which on a large store are many."""
+    where: dict[int, list[int]] = {}
+    for k, i in enumerate(idx):
+        where.setdefault(int(i), []).append(k)
+    return [(k, given.value) for name, given in mind.perms[step].items()
+            for k in where.get(mind.index[name], ())]
 
 
 def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | str],
@@ -372,10 +381,8 @@ def expected_mistakes(mind: Mind, steps: Sequence[str], objects: Sequence[int | 
     allowed = np.ones_like(worlds.weights)  # (W, n): P(no step forbidden | w)
     for s in steps:
         f = step_forbidden(_posterior(mind, s, temper), frame, worlds).copy()
-        for k, i in enumerate(idx):
-            given = mind.permission(s, i)
-            if given is not None:
-                f[:, k] = given.value
+        for k, value in permissions_at(mind, s, idx):
+            f[:, k] = value
         allowed *= 1.0 - f
     p_forb = np.clip(1.0 - (worlds.weights * allowed).sum(axis=0), 0.0, 1.0)
     dec = decisions(mind, steps, idx)
@@ -758,5 +765,6 @@ __all__ = ["ALL_KINDS", "HOLDS", "IDENTITY", "KINDS", "MIN_OUTCOME", "OTHER", "A
            "Question", "Scored", "action_answer_probabilities", "answers", "apply_answer", "best_questions",
            "binary_entropy", "candidates", "check_ahead", "check_temper", "correction_agents", "corrections",
            "decisions", "expected_mistakes", "horizon", "mistakes_ahead", "outcomes", "owner_sets",
-           "ownership_entropy", "p_permission", "rule_answer_probabilities", "step_forbidden", "task_reading",
-           "tempered", "uncertain_examples", "value_of_information", "worlds_for"]
+           "ownership_entropy", "p_permission", "permissions_at", "rule_answer_probabilities",
+           "step_forbidden", "task_reading", "tempered", "uncertain_examples", "value_of_information",
+           "worlds_for"]
