@@ -14,14 +14,13 @@ inference), save what changed (:mod:`ownctl.app.mindstore`).
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from typing import TYPE_CHECKING
 
 from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import changing, refit_focus
 from ownctl.app.settings import probability
 from ownctl.errors import BadValue, OwnctlError
-from ownctl.logic.rules import ANY, Norm, Rule, implies, parse_norm
+from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
 from ownctl.logic.vocab import action as check_action
 
 if TYPE_CHECKING:
@@ -124,7 +123,7 @@ def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
         after = [(r.id, r.text) for r in tx.knowledge.rules(action)]
     added = [r.text() for r in result.added]
     removed = sorted(r.text() for r in result.removed)
-    taken = taken_as(norm, result.outcome.given)
+    taken = [r.text() for r in result.said]
     parts = [f"added: {t}" for t in added] + [f"removed: {t}" for t in removed]
     if not parts:
         parts = ["the rules already say so" if norm.sign == "forbid" else "no rule covered it"]
@@ -136,12 +135,3 @@ def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
          "rules": [{"id": i, "text": t} for i, t in after if not t.startswith("allow ")]},
     )
 
-
-def taken_as(norm: Norm, given: Sequence[Rule]) -> list[str]:
-    """The given rules that stand for a forbid ``norm`` just said: the norm itself, or what the
-    stored permissions specialised it into (docs/learning.md; empty for an allow norm, and when the
-    norm was left out)."""
-    if norm.sign != "forbid":
-        return []
-    return [r.text() for r in given if r.action == norm.rule.action
-            and all(any(implies(a, lit) for a in r.literals) for lit in norm.rule.literals)]

@@ -121,11 +121,14 @@ class ClaimInfo:
 
 @dataclass(frozen=True)
 class NormResult:
-    """What a given norm changed in its action's forbid rules."""
+    """What a given norm changed in its action's forbid rules; ``said``: the given rules that stand
+    for a forbid norm (the norm itself, or what the stored permissions specialised it into; empty
+    for an allow norm, and when the learner left the norm out)."""
 
     outcome: Outcome
     added: tuple[Rule, ...]
     removed: tuple[Rule, ...]
+    said: tuple[Rule, ...] = ()
 
 
 class _Percepts:
@@ -796,7 +799,9 @@ class Mind:
         self._rule_posteriors.update(kept)
         added = tuple(r for r in self.rules[action] if r not in before)
         removed = tuple(r for r in before if r not in self.rules[action])
-        return NormResult(out, added, removed)
+        stands = () if norm.sign == "allow" else tuple(said) or tuple(
+            r for r in out.given if r in (norm.rule, norm.rule.simplified()))
+        return NormResult(out, added, removed, stands)
 
     def remove_permission(self, action: str, obj: int | str) -> None:
         """Forget one permission (the rules stay; posteriors follow)."""

@@ -239,6 +239,7 @@ def test_a_norm_the_permissions_narrow_is_acknowledged_as_narrowed(table_world: 
     permissions leave of it, and the reply says so."""
     table_world("allow", "trash", "on", "wallet")
     table_world("allow", "trash", "on", "pen")
+    table_world("forbid", "trash", "if", "isColored", "red", "and", "inArea", "desk")  # a narrower one
     kept = table_world.json("say", "Don't throw away the red things")
     assert kept["results"][0]["data"]["taken_as"] == ["forbid trash if isColored red"]
     assert not kept["results"][0]["data"]["specialised"] and "take it as" not in kept["reply"]
