@@ -30,7 +30,8 @@ FRAGMENTS: dict[str, str] = {
     "ACT": rf"(?P<act>{actions_regex()})",
     # an object phrase: "that", "this one", "this wallet", "the wallet", "jake 's cup", "block 2"
     # (adjectives are checked against the object: "the red mug")
-    "OBJ": rf"(?P<obj>(?:this|that|it)(?: one)?|these|those|(?:{_DETERMINER} )?(?:{_WORD} ){{0,2}}{_NOUN})",
+    "OBJ": rf"(?P<obj>(?:this|that|it)(?: one)?|these|those|they|them|"
+           rf"(?:{_DETERMINER} )?(?:{_WORD} ){{0,2}}{_NOUN})",
     # "do that": the action the robot is doing now
     "DO": r"do (?:that|this|it|so)",
     # a prohibition ("don't", "never", "you may not", ...) followed by a space

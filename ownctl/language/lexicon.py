@@ -4,8 +4,9 @@ Everything here is lower case and already normalised (see :mod:`ownctl.language.
 contractions are expanded ("don't" -> "do not"), possessives are split ("casey's" -> "casey 's")
 and phrasal verbs are joined ("throw it away" -> "throw away it").
 
-Action phrases (documented choice): *touching* an object means picking it up, since the robot
-cannot touch without grasping; *bringing* or *putting away* means collecting it (taking it home).
+Action phrases (documented choice): *touching* or *moving* an object means picking it up, since the
+robot cannot touch or move one without grasping it; *bringing* or *putting away* means collecting it
+(taking it home).
 """
 
 from __future__ import annotations
@@ -23,7 +24,8 @@ ACTION_PHRASES: dict[str, str] = {
     "trash": "trash", "bin": "trash", "discard": "trash", "dispose of": "trash",
     "get rid of": "trash", "junk": "trash", "throw": "trash",
     "pick up": "pickUp", "lift": "pickUp", "grab": "pickUp", "take": "pickUp",
-    "touch": "pickUp", "hold": "pickUp", "handle": "pickUp", "get": "pickUp",
+    "touch": "pickUp", "hold": "pickUp", "handle": "pickUp", "get": "pickUp", "move": "pickUp",
+    "shift": "pickUp",
     "collect": "collect", "bring home": "collect", "bring back": "collect", "bring": "collect",
     "put away": "collect", "fetch": "collect", "gather": "collect", "gather up": "collect",
     "take home": "collect", "bring me": "collect", "dump": "trash", "dump out": "trash",
@@ -60,7 +62,8 @@ NOT_NOUNS = frozenset({
     "to", "of", "in", "on", "with", "for", "nothing", "all", "any", "every", "mine", "yours",
     "away", "up", "out", "home", "back", "everyone", "someone", "nobody", "anyone", "other",
     "others", "my", "your", "the", "a", "an", "because", "since", "so", "alone", "now", "do",
-    "when", "whenever", "which", "who", "whose", "what", "why", "where", *CLASS_HEADS,
+    "when", "whenever", "which", "who", "whose", "what", "why", "where", "must", "should", "has",
+    "have", "needs", "need", "stay", "stays", "remain", "remains", *CLASS_HEADS,
 }) - {"thing"}
 
 #: Words that cannot be a name in "I'm NAME" ("I'm sorry", "I'm done").

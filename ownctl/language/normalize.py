@@ -76,6 +76,7 @@ REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
         (r"\bwanna\b", "want to"),
         (r"\bnever ever\b|\bdo not ever\b|\bdo not you ever\b|\bnever ever ever\b", "never"),
         (r"\bhow come\b", "why"),
+        (r"\bwhatever\b(?= (?:is|are|belongs|belong|has|does|nobody|someone|you)\b)", "anything that"),
     )
 )
 

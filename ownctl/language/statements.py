@@ -35,6 +35,11 @@ _STOP = r"(?:no|nope|stop|wait|whoa|halt|cancel|do not|do not do that|do not do 
         r"stop doing that|not that(?: one)?)"
 _LEAVE = r"(?:leave|keep away from|stay away from|hands off|keep your hands off|keep off)"
 _IT = r"(?:it|that|this|that one|this one|them|those|these)"
+#: where a thing left alone stays: "leave the mug where it is", "leave the red ones in place"
+_IN_PLACE = r"(?: alone| be| where (?:it is|they are)| in place| there)"
+#: "the mug stays put", "red things on the shelf must stay where they are" (= do not pick up)
+_STAY = (r"(?:(?:must|should|has to|have to|needs to|need to|is to|are to) )?(?:stay|stays|remain|remains) "
+         r"(?:put|where (?:it is|they are)|in place|there)")
 _GERUND = rf"(?P<act>{actions_regex(forms=GERUNDS)})"
 _PASSIVE = rf"(?P<act>{actions_regex(forms=PASSIVES)})"
 _OK = r"(?:ok|fine|allowed|safe|alright|permitted|free)"
@@ -279,8 +284,8 @@ def topic(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 
 # -- object-specific permissions -------------------------------------------------------------
 
-@GRAMMAR.rule("permission", "(?P<stop><REPRIMAND>)?<FORBID><ACT> <OBJ>", rf"{_LEAVE} <OBJ>(?: alone)?",
-              rf"(?P<stop><REPRIMAND>)?(?:stop|quit) {_GERUND} <OBJ>")
+@GRAMMAR.rule("permission", "(?P<stop><REPRIMAND>)?<FORBID><ACT> <OBJ>", rf"{_LEAVE} <OBJ>{_IN_PLACE}?",
+              rf"(?P<stop><REPRIMAND>)?(?:stop|quit) {_GERUND} <OBJ>", rf"<OBJ> {_STAY}")
 def forbid_object(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Don't throw this wallet away", "Leave that alone" (= don't pick it up), "Hey, don't throw
     that away!" (stops it too, if the robot is acting), "Don't touch my book" (the book is mine)."""
@@ -363,8 +368,8 @@ def _norm(sign: str, m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] |
     return None if alternatives is None else _rules(sign, action, alternatives)
 
 
-@GRAMMAR.rule("norm", "<FORBID><ACT> (?P<cls>.+)", rf"{_LEAVE} (?P<cls>.+?)(?: alone)?",
-              "<FORBID><DO> (?P<cond>.+)", rf"(?:stop|quit) {_GERUND} (?P<cls>.+)")
+@GRAMMAR.rule("norm", "<FORBID><ACT> (?P<cls>.+)", rf"{_LEAVE} (?P<cls>.+?){_IN_PLACE}?",
+              "<FORBID><DO> (?P<cond>.+)", rf"(?:stop|quit) {_GERUND} (?P<cls>.+)", rf"(?P<cls>.+?) {_STAY}")
 def forbid_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"Don't touch my stuff", "Never trash red things", "Don't do that if it's red", "Stop throwing
     away my things", "Don't trash things of Jake's or Xuan's" (two rules)."""
