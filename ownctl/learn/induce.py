@@ -188,9 +188,7 @@ class Inducer:
             return kept
 
         result = self._search(given, score, self.cfg.rule_tolerance * pos.sum(), somewhere(given, world))
-        if not result.success and not self.ours:
-            return rules
-        return subtract(rules, result.rule if result.success else given, self._merge)
+        return subtract(rules, result.rule, self._merge) if result.success else rules
 
 
 def somewhere(said: Rule, world: Frame | None) -> tuple[Filter, ...]:
