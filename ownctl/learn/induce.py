@@ -41,6 +41,7 @@ from ownctl.logic.prob import describes_some
 from ownctl.logic.rules import ANY, Norm, Rule
 
 MAX_RULES = 5  # ours: rules re-induction may add to the given ones
+SURELY = 1.0 - 1e-12  # a rule this probable on an example holds there in every ownership world
 TRACES = 4096  # ours: re-induction traces kept for certification (a memo: results never depend on it)
 _traces: Kept[exact.Choice] = Kept(TRACES)
 
@@ -161,13 +162,19 @@ class Inducer:
     # -- Algorithms 3 and 4 ------------------------------------------------------------------
     def cover_rule(self, rules: list[Rule], given: Rule, world: Frame | None = None) -> list[Rule]:
         """Add a given forbid rule, specialised against the allowed examples, never into a rule that
-        holds for none of ``world``'s objects (:func:`somewhere`)."""
+        holds for none of ``world``'s objects (:func:`somewhere`). Ours specialises it only against
+        the allowed examples it surely covers: where it covers one only if that object's uncertain
+        owners are who they may be, the permission is explained by who they are (inference), as a
+        permission the rules explain by a likely ownership teaches no rule."""
         if any(r.conditions <= given.conditions for r in rules):
             return rules
         neg = ~self.ev.positives
 
         def score(truths: np.ndarray, cands: Sequence[Rule]) -> np.ndarray:
-            excess: np.ndarray = np.maximum(self.ev.prob(truths)[:, neg] - self.ev.t[neg], 0).sum(axis=1)
+            covered = self.ev.prob(truths)[:, neg]
+            if self.ours:  # an allowed example the norm covers only if its owners are who they may be
+                covered = np.where(covered >= SURELY, covered, 0.0)  # is left to inference to explain
+            excess: np.ndarray = np.maximum(covered - self.ev.t[neg], 0).sum(axis=1)
             return excess
 
         threshold = self.cfg.rule_tolerance * neg.sum()

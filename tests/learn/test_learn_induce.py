@@ -157,6 +157,19 @@ def test_cover_rule_keeps_a_given_rule_without_negatives_and_skips_a_covered_one
         assert np.all(ev.q(list(out.rules)) >= 0.5)
 
 
+def test_ours_leaves_an_allowed_example_of_uncertain_owners_to_inference() -> None:
+    """"forbid trash if ownedBy any" with an allowed example that a1 owns with p=0.8: the example is
+    explained by its owners (it is probably nobody's), not by narrowing what was said, which used to
+    become "ownedBy any and isColored blue" (the colour of the forbidden example)."""
+    ev, vocab = evidence([[1, 0], [0.8, 0], [0, 0]], ["blue", "green", "red"], [1, 0, 0])
+    said = parse_norm("forbid trash if ownedBy any")
+    ours = learn_norm(said, (), ev, vocab, LearnConfig(learner="ours"))
+    assert texts(ours.given) == ["forbid trash if ownedBy any"]
+    sure, vocab = evidence([[1, 0], [1, 0], [0, 0]], ["blue", "green", "red"], [1, 0, 0])  # owned: narrow it
+    narrowed = learn_norm(said, (), sure, vocab, LearnConfig(learner="ours"))
+    assert narrowed.given and "forbid trash if ownedBy any" not in texts(narrowed.given)
+
+
 @pytest.mark.parametrize("learner", LEARNERS)
 def test_a_stated_norm_is_never_specialised_into_one_that_describes_no_object(learner: str) -> None:
     """Every a1 object, of every colour, was allowed; "forbid pickUp if ownedBy a1" then became
