@@ -326,7 +326,8 @@ def step_forbidden(rp: RulePosterior, frame: Frame, worlds: Worlds) -> np.ndarra
     return out
 
 
-_FORBIDDEN: Kept[tuple[RulePosterior, np.ndarray]] = Kept(4096)
+#: marginals kept: a few thousand on a task's 20 objects; at most 256 MiB of them on a large store
+_FORBIDDEN: Kept[tuple[RulePosterior, np.ndarray]] = Kept(4096, 256 << 20, lambda kept: kept[1].nbytes)
 
 
 def worlds_for(mind: Mind, steps: Sequence[str], frame: Frame) -> Worlds:
@@ -512,11 +513,12 @@ def rule_answer_probabilities(mind: Mind, rule: Rule, temper: float = EXACT,
     worlds = enumerate_worlds(frame, named, with_other=True)
     table, which = _set_tables(rp, frame, worlds)  # (U, W, n), (K,)
     covered = rule_truth([rule], frame, worlds)[None]  # (1, W, n)
-    w = worlds.weights[None]
-    some_allowed = (w * (covered & ~table)).sum(axis=1)[which]  # (K, n): P(covered and allowed)
-    some_forbidden = (w * (covered & table)).sum(axis=1)[which]
-    p_yes = float(rp.probabilities @ np.prod(np.clip(1 - some_allowed, 0, 1), axis=1))
-    p_no = float(rp.probabilities @ np.prod(np.clip(1 - some_forbidden, 0, 1), axis=1))
+    # per distinct disjunction (sets sharing one share their answers), summed in einsum's buffers
+    some_allowed = np.einsum("wn,uwn->un", worlds.weights, covered & ~table)  # P(covered and allowed)
+    some_forbidden = np.einsum("wn,uwn->un", worlds.weights, covered & table)
+    mass = np.bincount(which, rp.probabilities, len(table))  # each distinct disjunction's probability
+    p_yes = float(mass @ np.prod(np.clip(1 - some_allowed, 0, 1), axis=1))
+    p_no = float(mass @ np.prod(np.clip(1 - some_forbidden, 0, 1), axis=1))
     if not covered.any():  # it describes nothing here: "yes" and "no" are both true; count it "yes"
         return {"yes": 1.0, "no": 0.0, "partly": 0.0}
     return {"yes": p_yes, "no": p_no, "partly": max(0.0, 1.0 - p_yes - p_no)}
