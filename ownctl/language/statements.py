@@ -107,6 +107,28 @@ def reprimand_claim(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | 
     return _reprimand(obj, found, action, r)
 
 
+_REASON = rf" (?:because |since |as )?(?:it|that|this|that one|this one|they) {_VERB} (?P<rest>.+)"
+
+
+@GRAMMAR.rule(
+    "reprimand",
+    rf"(?:(?:no|nope|hey|stop|wait|whoa) )*put back <OBJ>(?:{_REASON})?",
+    rf"(?:(?:no|nope|hey|stop|wait|whoa) )*{_LEAVE} <OBJ>{_IN_PLACE}?{_REASON}",
+)
+def reprimand_leave(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"Put the book back, that's Mia's!" (stops the robot if it is acting; without a reason, only
+    that and "do not pick it up"), "Leave the mug alone, it's Jake's" (a prohibition with its
+    reason: the claim and the owner's norm too, as a reprimand)."""
+    obj = r.obj(m["obj"])
+    action = r.action("touch")
+    if group(m, "rest") is None:
+        return (*([Skip(obj)] if _acting(r) else []), Permission(action, obj, True))
+    found = _owned(m, r)
+    if not found or found[0].negated:
+        return None
+    return _reprimand(obj, found, action, r)
+
+
 @GRAMMAR.rule(
     "reprimand",
     r"<REPRIMAND>(?P<obj>this|that|it)(?: one)? is (?P<who>my|<NAME> 's) (?P<noun><NAME>)",
