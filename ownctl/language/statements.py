@@ -176,6 +176,17 @@ def claim_owns(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     return None if found is None else tuple(_claims(r.obj(m["obj"]), found))
 
 
+@GRAMMAR.rule("claim", rf"<THINK><OBJ> {_VERB} (?P<rest>.+?),? and so (?:is|are|does|do) (?P<also>.+)")
+def claim_and_so(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"The scarf is mine and so is the wallet": the same owners for both objects."""
+    if len(m["also"].split()) > 4:
+        return None
+    found = _owned(m, r)
+    if found is None:
+        return None
+    return (*_claims(r.obj(m["obj"]), found), *_claims(r.obj(m["also"]), found))
+
+
 @GRAMMAR.rule(
     "claim",
     r"<THINK>(?P<obj>(?:this|that|it)(?: one)?|these|those|they) (?:is|are) (?P<neg>not )?"

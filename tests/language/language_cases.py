@@ -44,6 +44,8 @@ TABLE: list[tuple[str, str, tuple[str, ...]]] = [
     ("No, no, stop!", "reprimand", _STOP),
     ("You can't do that", "reprimand", _STOP),
     # claims
+    ("The cup is mine and so is the wallet", "claim", ("claim cup casey", "claim wallet casey")),
+    ("Block 2 belongs to Jake, and so does the cup", "claim", ("claim block2 Jake", "claim cup Jake")),
     ("This is mine", "claim", ("claim wallet casey",)),
     ("That's mine", "claim", ("claim wallet casey",)),
     ("It belongs to me", "claim", ("claim wallet casey",)),
