@@ -134,4 +134,3 @@ def add_norm(ctx: AppContext, text: str, speaker: str | None = None) -> Done:
          "taken_as": taken, "specialised": bool(taken) and taken != [canonical],
          "rules": [{"id": i, "text": t} for i, t in after if not t.startswith("allow ")]},
     )
-
