@@ -45,7 +45,7 @@ def finite(what: str, value: float) -> float:
 @use_case
 def add_agent(ctx: AppContext, name: str) -> Done:
     """Introduce an agent (a possible owner)."""
-    check_name("agent", name)
+    name = check_name("agent", name)
     with changing(ctx, {"op": "agent.add", "agent": name}) as (_, mind):
         mind.add_agent(name)  # the new agent's calibrated prior enters every belief
     return Done(f"added agent {name}", {"agent": name})
@@ -105,7 +105,7 @@ def add_object(
     categories: Sequence[str] = (),
 ) -> Done:
     """Add an object with its percepts (``pos`` as "x,y[,z]")."""
-    check_name("object", name)
+    name = check_name("object", name)
     percepts = _percepts(color, pos)
     cats = _categories(categories)
     position = None if percepts.get("x") is None else (percepts["x"], percepts["y"], percepts["z"])
@@ -197,7 +197,7 @@ def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Don
 @use_case
 def add_area(ctx: AppContext, name: str, box: str) -> Done:
     """Add a box area ``"x0,y0,x1,y1"`` on the table plane."""
-    check_name("area", name)
+    name = check_name("area", name)
     x0, y0, x1, y1 = parse_numbers("--box", box, (4,))
     if x0 > x1 or y0 > y1:
         raise BadValue(f"--box must be x0,y0,x1,y1 with x0 <= x1 and y0 <= y1, got {box!r}")

@@ -96,7 +96,7 @@ def batch(
                 errors = [x for x in done.stderr.splitlines() if x.strip()]
                 typer.echo(json.dumps({"file": name, "ran": ran, "failed": number, "exit": done.code,
                                        "error": errors[-1] if errors else "", "valid": [],
-                                       "lines": results}))
+                                       "lines": results}, ensure_ascii=False))
             raise typer.Exit(done.code)
         ran += 1
     summary = {"file": name, "ran": ran, **({"lines": results} if json_out else {})}

@@ -10,6 +10,7 @@ import json
 import math
 import os
 import shlex
+import sys
 import time
 from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass, field
@@ -20,6 +21,7 @@ from typer.core import TyperGroup
 
 from ownctl.cli.help import plain_values
 from ownctl.errors import BadValue, OwnctlError
+from ownctl.logic.names import composed
 
 if TYPE_CHECKING:
     from ownctl.app.context import AppContext
@@ -225,6 +227,8 @@ class OwnctlGroup(TyperGroup):
     ) -> Any:
         state = extra.get("obj")
         prefix = state.prefix if isinstance(state, State) else ""
+        # one spelling per name: "José" typed with a combining accent is the José of the store
+        args = [composed(a) for a in (sys.argv[1:] if args is None else args)]
         try:
             result = super().main(args, prog_name, complete_var, standalone_mode=False, **extra)
             code = result if isinstance(result, int) and not isinstance(result, bool) else 0

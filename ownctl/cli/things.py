@@ -18,7 +18,8 @@ obj = Group(help="Objects and their percepts: colour, position, categories.")
 area = Group(help="Named box areas on the table plane.")
 
 NameArg = Annotated[
-    str, typer.Argument(metavar="NAME", help="Its name: a letter, then letters, digits, _ or -.")
+    str,
+    typer.Argument(metavar="NAME", help="Its name: a letter, then letters, marks, digits, _ or -."),
 ]
 ColorOpt = Annotated[
     str | None, typer.Option("--color", metavar="COLOUR", help="Colour name ('none' clears it).")
@@ -71,7 +72,7 @@ def world_export(
     from ownctl.app import worldfile
 
     data = worldfile.export(app_ctx(ctx), name)
-    text = json.dumps(data) + "\n" if json_out else worldfile.export_toml(data)
+    text = json.dumps(data, ensure_ascii=False) + "\n" if json_out else worldfile.export_toml(data)
     if output is None:
         typer.echo(text, nl=False)
     else:

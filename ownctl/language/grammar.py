@@ -19,10 +19,13 @@ from dataclasses import dataclass
 from ownctl.language.instructions import Instruction
 from ownctl.language.lexicon import NOT_NOUNS, actions_regex, alternation
 from ownctl.language.resolve import Decline, Resolver
+from ownctl.logic.names import word_pattern
 
-_WORD = rf"(?!{alternation(NOT_NOUNS)})[a-z][\w-]*"
+_NAME = word_pattern()
+
+_WORD = rf"(?!{alternation(NOT_NOUNS)}){_NAME}"
 _NOUN = rf"{_WORD}(?: \d+)?"
-_DETERMINER = r"(?:this|that|these|those|the|a|an|my|your|our|his|her|their|[a-z][\w-]* 's)"
+_DETERMINER = rf"(?:this|that|these|those|the|a|an|my|your|our|his|her|their|{_NAME} 's)"
 
 #: Named fragments usable in rule templates.
 FRAGMENTS: dict[str, str] = {
@@ -51,7 +54,7 @@ FRAGMENTS: dict[str, str] = {
     # an optional hedge opening a claim ("i think that ...")
     "THINK": r"(?P<think>(?:i think|i believe|i guess|i am sure|i am pretty sure)(?: that)? )?",
     # an agent or object name
-    "NAME": r"[a-z][\w-]*",
+    "NAME": rf"{_NAME}",
 }
 _PLACEHOLDER = re.compile(r"<([A-Z]+)>")
 

@@ -34,6 +34,7 @@ from ownctl.language.lexicon import (
     alternation,
     inflect,
 )
+from ownctl.logic.names import composed, marks
 
 _QUOTES = str.maketrans({"\u2019": "'", "\u2018": "'", "`": "'", "\u00b4": "'", "\u02bc": "'"})
 _VOC = alternation(ROBOT_NAMES)
@@ -96,7 +97,7 @@ def _drop_vocatives(text: str) -> str:
 
 def _strip_punctuation(text: str) -> str:
     """Punctuation to spaces; keep apostrophes and hyphens inside words; split plural possessives."""
-    text = re.sub(r"[^\w\s'-]|_(?![\w-])", " ", text)
+    text = re.sub(rf"[^\w\s'{marks()}-]|_(?![\w-])", " ", text)
     text = re.sub(r"(\w)s'(?=\s|$)", r"\1s 's", text)
     return re.sub(r"(?<![\w])(?:-+|'(?!s\b))|['-]+(?![\w])", " ", text)
 
@@ -117,7 +118,7 @@ def _move_particles(text: str) -> str:
 @lru_cache(maxsize=4096)
 def normalize(utterance: str) -> str:
     """The canonical word string of an utterance (lower case, single spaces, no punctuation)."""
-    text = _drop_vocatives(utterance.translate(_QUOTES).lower())
+    text = _drop_vocatives(composed(utterance).translate(_QUOTES).lower())
     text = " ".join(_strip_punctuation(text).split())
     for pattern, repl in REWRITES:
         text = pattern.sub(repl, text)

@@ -28,11 +28,15 @@ from itertools import product
 
 from ownctl.language.lexicon import CLASS_HEADS, HEDGES, alternation, hedge_of
 from ownctl.language.resolve import NOBODY, Resolver
+from ownctl.logic.names import letters_pattern, word_pattern
 from ownctl.logic.rules import ANY, Literal
+
+_NAME = word_pattern()
+_LETTERS = letters_pattern()
 
 # -- owner phrases ---------------------------------------------------------------------------
 
-_OWNER = r"(?:mine|[a-z][\w-]*(?: 's)?)"
+_OWNER = rf"(?:mine|{_NAME}(?: 's)?)"
 _TAIL = re.compile(
     rf"(?P<hedge>{alternation(tuple(HEDGES))} )?(?P<neg>not )?"
     r"(?P<only>(?:only|all|solely|exclusively|just) (?:to )?)?"
@@ -135,22 +139,22 @@ def _mod(pattern: str, build: Build) -> Modifier:
 _REL = r"(?:(?:that|which|if|when|whenever|as long as) (?:it |they )?)?"
 _BE = r"(?:(?:is|are) )?"
 _NOT = r"(?P<neg>not )?"
-_WHO_WORDS = r"other people|someone else|anyone else|other agents|another person|[a-z][\w-]*"
+_WHO_WORDS = rf"other people|someone else|anyone else|other agents|another person|{_NAME}"
 _WHO = rf"(?P<o>{_WHO_WORDS})"
 _POSS = rf"(?P<o>mine|(?:{_WHO_WORDS}) 's)"
 
 PREMODIFIERS: tuple[Modifier, ...] = (
     _mod(rf"(?P<o>(?:{_WHO_WORDS}) 's|my)", _owner),
-    _mod(r"(?P<neg>non-?|not )(?P<c>[a-z]+)", _colour),
-    _mod(r"(?P<c>[a-z]+)", _colour),
+    _mod(rf"(?P<neg>non-?|not )(?P<c>{_LETTERS})", _colour),
+    _mod(rf"(?P<c>{_LETTERS})", _colour),
     _mod(r"(?:owned|claimed)", lambda m, r: [own(ANY)]),
     _mod(r"(?:unowned|ownerless|unclaimed)", lambda m, r: [own(ANY, True)]),
 )
 
 POSTMODIFIERS: tuple[Modifier, ...] = (
-    _mod(rf"{_REL}{_BE}{_NOT}in (?:the )?(?:category (?P<k>[a-z][\w-]*)|(?P<k2>[a-z][\w-]*) category)",
+    _mod(rf"{_REL}{_BE}{_NOT}in (?:the )?(?:category (?P<k>{_NAME})|(?P<k2>{_NAME}) category)",
          _category),
-    _mod(rf"{_REL}{_BE}{_NOT}(?P<prep>in|on|inside|within|at|outside(?: of)?) (?:the )?(?P<a>[a-z][\w-]*)"
+    _mod(rf"{_REL}{_BE}{_NOT}(?P<prep>in|on|inside|within|at|outside(?: of)?) (?:the )?(?P<a>{_NAME})"
          r"(?P<said> area| zone| region)?", _area),
     _mod(rf"{_REL}(?P<neg>(?:does|do) not )?belongs? to {_WHO}", _owner),
     _mod(rf"{_REL}{_BE}{_NOT}owned by {_WHO}", _owner),
@@ -163,7 +167,7 @@ POSTMODIFIERS: tuple[Modifier, ...] = (
          lambda m, r: [own(ANY, bool(m["neg"]))]),
     _mod(rf"{_REL}(?:has|have) no owners?", lambda m, r: [own(ANY, True)]),
     _mod(r"without (?:an? )?owners?", lambda m, r: [own(ANY, True)]),
-    _mod(rf"{_REL}{_BE}{_NOT}(?:colored )?(?P<c>[a-z]+)", _colour),
+    _mod(rf"{_REL}{_BE}{_NOT}(?:colored )?(?P<c>{_LETTERS})", _colour),
 )
 
 _DETERMINER = re.compile(r"(?:(?:any|all|every|each)(?: of)?(?: the)? |the )")
@@ -222,7 +226,7 @@ def class_literals(phrase: str, r: Resolver) -> tuple[Literal, ...] | None:
 
 # -- connectives: "or" and "unless" ----------------------------------------------------------------
 
-_OR = re.compile(r"(?:(?<= )|^)(?P<a>[a-z][\w-]*(?: 's)?) (?:or|nor) (?P<b>[a-z][\w-]*(?: 's)?)(?= |$)")
+_OR = re.compile(rf"(?:(?<= )|^)(?P<a>{_NAME}(?: 's)?) (?:or|nor) (?P<b>{_NAME}(?: 's)?)(?= |$)")
 _SUBJECT = re.compile(r"(?:it|they|something|anything|an object|a thing|the object|the thing|that|"
                       r"this|these|those|things|stuff|an item|the item) ")
 _OBJECT_TAIL = re.compile(r" (?:it|them)$")

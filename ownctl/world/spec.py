@@ -232,8 +232,8 @@ def _toml_value(value: Any) -> str:
         return "true" if value else "false"
     if isinstance(value, int | float):
         return repr(float(value))
-    if isinstance(value, str):
-        return json.dumps(value)
+    if isinstance(value, str):  # a JSON string is a TOML basic string, once DEL is escaped as TOML asks
+        return json.dumps(value, ensure_ascii=False).replace("\x7f", "\\u007f")
     if isinstance(value, Mapping):
         return "{ " + ", ".join(f"{k} = {_toml_value(v)}" for k, v in value.items()) + " }" if value else "{}"
     return "[" + ", ".join(_toml_value(v) for v in value) + "]"

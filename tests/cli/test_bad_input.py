@@ -127,7 +127,7 @@ def test_user_error_is_one_line_exit_1_and_writes_nothing(world: Ownctl, args: t
 
 def test_hostile_names_are_refused_with_the_rule(world: Ownctl) -> None:
     result = world("agent", "add", "x'; DROP TABLE agents;--", code=1)
-    assert "a letter, then letters, digits" in result.stderr
+    assert "a letter, then letters, marks, digits" in result.stderr
     assert [a["name"] for a in world.json("agent", "list")] == ["alexis", "xuan"]
 
 

@@ -94,7 +94,7 @@ def test_run_summary_and_table_use_the_same_words(ownctl: Ownctl) -> None:
     assert " delivered, " in result.stdout and "moved" not in result.stdout
 
 
-SPEAKERS = ["x" * 65, "é", "Xuan Tan", "9lives", "any", "", "a" * 10_000]
+SPEAKERS = ["x" * 65, "-\u00e9", "\u0430gent", "Xuan Tan", "9lives", "any", "", "a" * 10_000]
 
 
 @pytest.mark.parametrize("speaker", SPEAKERS, ids=lambda s: repr(s[:12]))

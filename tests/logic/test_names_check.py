@@ -1,19 +1,24 @@
-"""The naming rule (architecture section 2): a letter, then letters, digits, '_' or '-';
-reserved words refused."""
+"""The naming rule (architecture section 2): a letter of any script, then letters, marks, digits,
+'_' or '-', in one script and composed; reserved words refused."""
 
 from __future__ import annotations
 
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from ownctl.errors import BadName, OwnctlError
-from ownctl.logic.names import NAME_RULE, RESERVED, check_name, is_name
+from ownctl.logic.names import NAME_RULE, RESERVED, check_name, composed, is_name, scripts
 
 VALID = [
     "alexis", "xuan", "agent2", "block1", "desk_xuan", "Bob-1", "a", "A_b-9", "x" * 64, "anyone", "nonever",
+    "al\u00e9xis", "Jos\u00e9", "Zo\u00eb", "S\u00f8ren", "\u0414\u0438\u043c\u0430", "\u0930\u093e\u092e",
+    "\u5c71\u7530", "\u5c71\u7530\u305f\u308d\u3046", "\u0645\u0631\u064a\u0645", "tasse-\u00e0-caf\u00e9_2",
 ]
 HOSTILE = [
     "", " ", "1agent", "_agent", "-x", "x'; drop table objects; --", "robert');DROP", 'a"b', "a'b", "a b",
-    "a\x00", "a\nb", "ab\n", "\tab", "a\x1b[31m", "a\x7f", "al\u00e9xis", "\u0430gent", "a.b", "a/b", "a;b",
+    "a\x00", "a\nb", "ab\n", "\tab", "a\x1b[31m", "a\x7f", "\u0430gent", "p\u0430ypal",
+    "\u0301a", "\u00bda", "a\u200bb", "a\u00a0b", "a.b", "a/b", "a;b",
     "x" * 65, "a*", "a:b",
 ]
 
@@ -57,3 +62,36 @@ def test_design_reserved_words_are_in_the_set() -> None:
 def test_non_strings_are_refused(value) -> None:
     with pytest.raises(BadName):
         check_name("area", value)
+
+
+@pytest.mark.parametrize(
+    ("typed", "stored"),
+    [
+        ("Jose\u0301", "Jos\u00e9"),  # a combining accent composes
+        ("\uff4a\uff4f\uff53\u00e9", "jos\u00e9"),  # full-width letters fold
+        ("Zo\u00eb", "Zo\u00eb"),
+    ],
+)
+def test_a_name_is_stored_in_its_composed_form(typed: str, stored: str) -> None:
+    assert not is_name(typed) or typed == stored
+    assert check_name("agent", typed) == stored
+    assert is_name(stored)
+
+
+def test_a_mixed_script_name_is_refused_naming_its_scripts() -> None:
+    with pytest.raises(BadName) as info:
+        check_name("agent", "\u0430gent")  # a Cyrillic a before Latin letters
+    assert "Cyrillic" in info.value.message and "Latin" in info.value.message
+    assert scripts("\u5c71\u7530\u305f\u308d\u3046") == {"CJK", "HIRAGANA"}
+    assert scripts("A_b-9") == {"LATIN"}
+
+
+@given(st.text(max_size=12))
+def test_check_name_returns_a_name_it_accepts_unchanged(text: str) -> None:
+    """Law: whatever is accepted comes back composed, a name, and accepted again unchanged."""
+    try:
+        name = check_name("object", text)
+    except BadName:
+        return
+    assert name == composed(text) and is_name(name)
+    assert check_name("object", name) == name
