@@ -46,7 +46,7 @@ def task_scope(mind: Any, task: str, objects: Sequence[str] | None) -> tuple[tup
 
 def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: int) -> dict[str, Any]:
     from ownctl.app.settings import asking
-    from ownctl.mind.ask import IDENTITY, best_questions, expected_mistakes, task_reading
+    from ownctl.mind.ask import IDENTITY, best_questions, expected_mistakes, task_reading, worth_asking
 
     if top < 1:
         raise BadValue(f"--top must be at least 1, got {top}")
@@ -63,13 +63,14 @@ def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: i
                             "p_forbidden": float(p), "p_wrong": float(w)}
                            for n, d, p, w in zip(before.objects, before.decisions, before.p_forbidden,
                                                  before.p_wrong, strict=True)],
-            "questions": [s.as_dict() for s in ranked]}
+            "questions": [{**s.as_dict(), "worth_asking": worth_asking(s.gain, min_gain)} for s in ranked]}
 
 
 def questions(ctx: AppContext, task: str = "trashAll", objects: Sequence[str] | None = None,
               top: int = 3) -> dict[str, Any]:
     """``{"task", "steps", "objects", "expected_mistakes", "permissions", "per_object", "questions"}``
-    (``permissions``: how many the task's steps hold); writes nothing."""
+    (``permissions``: how many the task's steps hold; each question's ``worth_asking``: whether its
+    gain reaches ``ask.min_gain``, as ``run --ask`` and ``ask --put`` require); writes nothing."""
     with ctx.read() as tx:
         return _ranked(tx, ctx.now, task, objects, top)
 

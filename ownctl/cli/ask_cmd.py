@@ -61,6 +61,11 @@ def ask(
         if not data["permissions"]:  # docs/asking.md, section 4: a task asks only after its first one
             typer.echo(f"No permission of {', '.join(data['steps'])} is known yet: these gains rest on the "
                        "prior over rule sets, and a task asks only after its first permission.")
+        below = sum(not q["worth_asking"] for q in data["questions"])
+        if below:  # docs/asking.md, section 4: what run --ask and ask --put would skip
+            typer.echo(f"{below} of these would save less than ask.min_gain ({data['min_gain']:g}): neither "
+                       "run --ask nor ask --put asks them (a gain below 0: the answer is expected to "
+                       "lead the robot's decisions to more mistakes, by its model).")
 
     emit(data, json_out, quiet, show)
 

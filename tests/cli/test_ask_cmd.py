@@ -51,6 +51,18 @@ def test_ask_lists_questions_with_gains_and_writes_nothing(world: Ownctl) -> Non
 
 
 @pytest.mark.slow
+def test_ask_marks_the_questions_not_worth_asking(world: Ownctl) -> None:
+    many = world.json("ask", "--task", "trashAll", "--top", "12")["questions"]
+    assert [q["worth_asking"] for q in many] == [q["gain"] >= 0.05 and q["gain"] > 1e-9 for q in many]
+    below = sum(not q["worth_asking"] for q in many)
+    assert below > 0
+    note = f"{below} of these would save less than ask.min_gain (0.05)"
+    assert note in world("ask", "--task", "trashAll", "--top", "12").stdout
+    world("config", "set", "ask.min_gain", "0")
+    assert all(q["worth_asking"] == (q["gain"] > 1e-9) for q in world.json("ask", "--top", "12")["questions"])
+
+
+@pytest.mark.slow
 def test_ask_says_when_its_gains_rest_on_the_prior_alone(tmp_path: Path, ownctl: Ownctl) -> None:
     path = tmp_path / "world.toml"
     path.write_text(WORLD, encoding="utf-8")
