@@ -32,6 +32,14 @@ class GraspFailed(SimStepFailed):
     """No collision-free grasp exists, or the block was not held after the lift or carry."""
 
 
+class Covered(GraspFailed):
+    """Another block lies on the one to pick (``blocks``: their indices, for the message)."""
+
+    def __init__(self, blocks: tuple[int, ...]) -> None:
+        super().__init__("no collision-free grasp: another block lies on top of it")
+        self.blocks = blocks
+
+
 class NoRoom(SimStepFailed):
     """The home area or the bin has no free spot left for another block."""
 

@@ -106,10 +106,15 @@ def grasp_yaw(
     return None
 
 
-def covered(target: BlockState, others: Sequence[BlockState]) -> bool:
-    """True if another block rests on ``target`` (overlaps its footprint and sits higher)."""
+def covering(target: BlockState, others: Sequence[BlockState]) -> list[BlockState]:
+    """The blocks of ``others`` resting on ``target`` (overlapping its footprint, higher up)."""
     top = target.rect()
-    return any(b.center[2] > target.center[2] + H and overlap(top, b.rect(), 0.0) for b in others)
+    return [b for b in others if b.center[2] > target.center[2] + H and overlap(top, b.rect(), 0.0)]
+
+
+def covered(target: BlockState, others: Sequence[BlockState]) -> bool:
+    """True if another block rests on ``target``."""
+    return bool(covering(target, others))
 
 
 @dataclass(frozen=True)

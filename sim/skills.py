@@ -14,7 +14,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from sim import scene_config as cfg
-from sim.errors import GraspFailed, NoRoom, Unreachable
+from sim.errors import Covered, GraspFailed, NoRoom, Unreachable
 from sim.ik import Q_NOMINAL, YAW_CENTER, down_rotation
 from sim.planner import (
     DROP_OPENING,
@@ -22,7 +22,7 @@ from sim.planner import (
     PLACE_OPENING,
     BlockState,
     PutDown,
-    covered,
+    covering,
     drop_point,
     grasp_yaw,
     home_put_down,
@@ -113,8 +113,9 @@ class Skills:
     def plan_grasp(self, side: str, block: int) -> float:
         """Closing yaw for picking ``block`` with ``side``; raises if blocked."""
         target, others = self.state(block), self.others(block)
-        if covered(target, others):
-            raise GraspFailed("no collision-free grasp: another block lies on top of it")
+        above = covering(target, others)
+        if above:
+            raise Covered(tuple(b.index for b in above))
         yaw = grasp_yaw(target, others, self.walls, YAW_CENTER[side])
         if yaw is None:
             raise GraspFailed("no collision-free grasp: neighbours or walls too close on both sides")

@@ -20,7 +20,7 @@ import numpy as np
 
 from ownctl.errors import BadValue, DuplicateName, UnknownName
 from sim import baxter
-from sim.errors import PhysicsUnstable, SimStepFailed, Unreachable
+from sim.errors import Covered, PhysicsUnstable, SimStepFailed, Unreachable
 from sim.ik import YAW_CENTER
 from sim.layout import SPACING, home_slots, map_for, place_blocks
 from sim.planner import PICK_OPENING, bin_cells
@@ -250,11 +250,19 @@ class PhysicsWorld:
             return StepOutcome(False, action, name, str(exc), elapsed)
         except SimStepFailed as exc:
             elapsed = self._recover(snapshot) + self.sim_time - start
-            return StepOutcome(False, action, name, str(exc), elapsed)
+            return StepOutcome(False, action, name, self._failure(exc), elapsed)
         if area is not None and not self.in_area(name, area):
             message = f"{name} ended outside the {area} area"
             return StepOutcome(False, action, name, message, self.sim_time - start)
         return StepOutcome(True, action, name, None, self.sim_time - start)
+
+    def _failure(self, exc: SimStepFailed) -> str:
+        """Why a step failed, naming the blocks in the way when there are some."""
+        if isinstance(exc, Covered):
+            names = [self.names[i] for i in exc.blocks]
+            verb = "lies" if len(names) == 1 else "lie"
+            return f"no collision-free grasp: {', '.join(names)} {verb} on top of it"
+        return str(exc)
 
     def _recover(self, snapshot: Snapshot) -> float:
         """After a failed skill: let go and park both arms; if that breaks the physics, restore ``snapshot``.

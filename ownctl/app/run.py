@@ -105,14 +105,22 @@ class PhysicsExecutor:
         video = render if render and render.endswith(".mp4") else None
         self.world = PhysicsWorld(blocks, areas, seed=seed, arm=arm, grasp=grasp, render=video, camera=camera)
         self.render = render
-        self.failed: list[str] = []
+        self._failed: dict[tuple[str, str], str] = {}
 
     def perform(self, action: str, name: str) -> Execution:
-        """Trash or collect ``name`` with the robot; a failed step is remembered for exit code 4."""
+        """Trash or collect ``name`` with the robot; a step that failed, and did not succeed when
+        tried again, is remembered for exit code 4."""
         outcome = self.world.trash(name) if action == "trash" else self.world.collect(name)
-        if not outcome.ok:
-            self.failed.append(f"{action} {name}: {outcome.error}")
+        if outcome.ok:
+            self._failed.pop((action, name), None)
+        else:
+            self._failed[action, name] = f"{action} {name}: {outcome.error}"
         return Execution(outcome.ok, outcome.error)
+
+    @property
+    def failed(self) -> list[str]:
+        """The steps that failed and were not completed later, in the order they first failed."""
+        return list(self._failed.values())
 
     def position(self, name: str) -> Position | None:
         """Where ``name`` is now, in workspace coordinates."""

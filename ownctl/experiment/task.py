@@ -15,7 +15,7 @@ report's metrics, never by the Mind.
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from typing import Protocol
 
 import numpy as np
@@ -191,7 +191,37 @@ def run_objects(mind: Mind, truth: TrueNorms, task: Task, executor: Executor, in
         records.append(record)
         if on_step is not None:
             on_step(record)
+    if attempts is None:
+        _retry_failed(mind, task, steps, executor, records, on_step)
     return records
+
+
+FAILED = "failed: "  # the reason of an object whose action the executor could not complete
+RETRIED = "delivered on a later try"
+
+
+def _retry_failed(mind: Mind, task: Task, steps: tuple[str, ...], executor: Executor,
+                  records: list[StepRecord], on_step: Callable[[StepRecord], None] | None) -> None:
+    """Act again, once every object was visited, on those whose action failed: a block that lay
+    under another, or too close to its neighbours, is often free by then. Passes in task order
+    repeat while one delivers (a pile comes down one block per pass at worst). Nothing is decided
+    or taught again, but an object the Mind now believes forbidden is left alone unless the
+    instructor forced it. ``records`` is updated in place; ``on_step`` sees each delivery."""
+    progress = True
+    while progress:
+        progress = False
+        for k, record in enumerate(records):
+            if record.outcome != "skipped" or not record.reason.startswith(FAILED):
+                continue
+            if not record.forced and mind.decide(task.action, record.obj, steps)[0]:
+                continue
+            done = executor.perform(task.action, record.name)
+            _sync(mind, executor)
+            if done.ok:
+                records[k] = replace(record, outcome="delivered", reason=RETRIED)
+                progress = True
+                if on_step is not None:
+                    on_step(records[k])
 
 
 def remaining(mind: Mind, target: Area, start: int) -> list[int]:
@@ -217,7 +247,7 @@ def _attempt(mind: Mind, truth: TrueNorms, task: Task, steps: tuple[str, ...], i
     if act:
         done = executor.perform(task.action, name)
         outcome = "delivered" if done.ok else "skipped"
-        reason = "" if done.ok else f"failed: {done.error or 'unknown error'}"
+        reason = "" if done.ok else f"{FAILED}{done.error or 'unknown error'}"
     return StepRecord(i, name, outcome, allowed, violated, mistake, forced, reason, tuple(bad))
 
 

@@ -86,3 +86,41 @@ def test_physics_trash_leaves_the_forbidden_block_in_place(tmp_path: Path, ownct
         x, y, _ = after[name]["position"]
         assert -0.3 <= x <= 0.2 and 0.6 <= y <= 1.1
     assert (tmp_path / "end.png").stat().st_size > 1000
+
+
+PILE = """
+name = "pile"
+agents = ["ana"]
+norms = []
+
+[[areas]]
+name = "trash"
+box = [-0.3, 0.6, 0.2, 1.1]
+
+[[areas]]
+name = "saucer"
+box = [0.30, 0.30, 0.34, 0.34]
+""" + "".join(f"""
+[[objects]]
+name = "{name}"
+color = "red"
+position = [0.32, 0.32, 0.0]
+""" for name in ("bottom", "middle", "top"))
+
+
+@pytest.mark.slow
+def test_physics_takes_a_pile_down_from_the_top(tmp_path: Path, ownctl: Ownctl) -> None:
+    """Three blocks in an area with room for one are piled (sim/layout.py); trashAll tries the
+    lower ones again once the blocks on them are gone, and the run succeeds."""
+    path = tmp_path / "pile.toml"
+    path.write_text(PILE, encoding="utf-8")
+    ownctl("world", "load", str(path))
+    report = ownctl.json("run", "trashAll")
+    assert report["failed_steps"] == [] and sorted(report["delivered"]) == ["bottom", "middle", "top"]
+    reasons = {s["object"]: s["reason"] for s in report["steps"]}
+    assert reasons == {"bottom": "delivered on a later try", "middle": "delivered on a later try", "top": ""}
+    log = [e["payload"] for e in ownctl.json("log", "-n", "10") if e["payload"].get("op") == "run.step"]
+    assert [(p["object"], p["outcome"]) for p in log] == [
+        ("bottom", "skipped"), ("middle", "skipped"), ("top", "delivered"), ("middle", "delivered"),
+        ("bottom", "delivered")]
+    assert "middle lies on top of it" in log[0]["reason"]

@@ -162,3 +162,64 @@ def test_failed_actions_are_skipped_with_their_reason() -> None:
     report = run_task(mind_of(world), world, "trashAll", Slippery(world), SilentInstructor())
     assert ("block1", "failed: the grasp slipped") in report.skipped
     assert "block1" not in report.delivered and report.delivered
+
+
+class Piled(KinematicExecutor):
+    """A kinematic executor on which each block of ``under`` cannot be moved while the block named
+    for it is not yet trashed (it lies on top), and which counts the attempts per block."""
+
+    def __init__(self, world: World, under: dict[str, str]) -> None:
+        super().__init__(world)
+        self.under, self.tries = under, {o.name: 0 for o in world.objects}
+
+    def perform(self, action: str, name: str):  # type: ignore[no-untyped-def]
+        from ownctl.experiment.task import Execution
+
+        self.tries[name] += 1
+        top = self.under.get(name)
+        if top is not None and not inside(get_area(self.world, "trash"), self.position(top)):
+            return Execution(False, f"{top} lies on top of it")
+        return super().perform(action, name)
+
+
+def get_area(world: World, name: str) -> Area:
+    return next(a for a in world.areas if a.name == name)
+
+
+def test_a_failed_action_is_tried_again_once_the_block_on_top_is_gone() -> None:
+    from ownctl.experiment.task import RETRIED, run_objects
+
+    world = paper(4)
+    pile = Piled(world, {"block1": "block2", "block2": "block3"})  # block3 on block2 on block1
+    seen: list[tuple[str, str]] = []
+    records = run_objects(mind_of(world), TrueNorms(world), get_task("trashAll"), pile, SilentInstructor(),
+                          on_step=lambda r: seen.append((r.name, r.outcome)))
+    fate = {r.name: (r.outcome, r.reason) for r in records}
+    assert fate["block1"] == fate["block2"] == ("delivered", RETRIED)
+    assert pile.tries["block1"] == 3 and pile.tries["block2"] == 2  # one pass per block of the pile
+    assert all(n == 1 for name, n in pile.tries.items() if name not in ("block1", "block2"))
+    assert seen[-2:] == [("block2", "delivered"), ("block1", "delivered")]  # each delivery reported
+
+
+def test_a_block_that_stays_covered_or_is_now_forbidden_is_not_delivered() -> None:
+    from ownctl.experiment.task import run_objects
+
+    world = paper(4)
+    mind = mind_of(world, frozen_rules=True)  # permissions decide their objects alone
+    trash = get_area(world, "trash")
+    last = [o.name for o in world.objects if not inside(trash, o.position)][-1]
+    pile = Piled(world, {"block1": last, "block2": "block1", "block3": "block4"})
+    mind.permit("trash", "block4", 1.0)  # block4 stays where it is, on block3
+
+    def forbid_block2_at_the_end(record: StepRecord) -> None:
+        if record.name == last:
+            mind.permit("trash", "block2", 1.0)
+
+    records = run_objects(mind, TrueNorms(world), get_task("trashAll"), pile, SilentInstructor(),
+                          on_step=forbid_block2_at_the_end)
+    fate = {r.name: (r.outcome, r.reason) for r in records}
+    assert fate["block1"][0] == "delivered"  # freed when the last block went
+    assert fate["block2"] == ("skipped", "failed: block1 lies on top of it")
+    assert pile.tries["block2"] == 1  # forbidden by then: not tried again
+    assert fate["block3"] == ("skipped", "failed: block4 lies on top of it")
+    assert pile.tries["block3"] == 3  # tried in each pass, the last delivering nothing
