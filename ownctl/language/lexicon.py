@@ -87,7 +87,15 @@ HEDGES: dict[str, float] = {
     "actually": 1.0, "surely": 1.0, "i am sure": 1.0, "i am pretty sure": 0.8, "pretty sure": 0.8,
     "i reckon": 0.8, "i suppose": 0.6, "for sure": 1.0, "i am certain": 1.0, "i bet": 0.8,
     "as far as i know": 0.8, "if i am not mistaken": 0.8, "if i remember correctly": 0.8,
+    "fairly sure": 0.8, "i am fairly sure": 0.8, "quite sure": 0.8, "i am quite sure": 0.8,
+    "almost certain": 0.8, "i am almost certain": 0.8, "most likely": 0.8, "possibly": 0.6,
 }
+
+#: Asides that say nothing when they stand alone between commas ("The keys are Xuan's, by the way").
+ASIDES = frozenset({
+    "by the way", "btw", "fyi", "for the record", "for your information", "just saying", "you know",
+    "i mean", "to be honest", "honestly", "in fact", "of course", "as you know", "mind you",
+})
 
 #: Discourse markers that may open a sentence without changing what it says ("So, whose is it?").
 DISCOURSE = frozenset({

@@ -25,7 +25,7 @@ from ownctl.language.instructions import Claim, Instruction, NormInstruction, Pe
 from ownctl.language.lexicon import DEICTIC, GERUNDS, NOT_NOUNS, PASSIVES, actions_regex, hedge_of
 from ownctl.language.phrases import Owned, class_alternatives, condition_phrase, owners
 from ownctl.language.resolve import NOBODY, Decline, Resolver, split_determiner
-from ownctl.logic.rules import Literal, Norm, Rule
+from ownctl.logic.rules import ANY, Literal, Norm, Rule
 
 GRAMMAR = Grammar()
 
@@ -113,12 +113,14 @@ _REASON = rf" (?:because |since |as )?(?:it|that|this|that one|this one|they) {_
 @GRAMMAR.rule(
     "reprimand",
     rf"(?:(?:no|nope|hey|stop|wait|whoa) )*put back <OBJ>(?:{_REASON})?",
+    rf"(?:(?:no|nope|hey|stop|wait|whoa) )*put down <OBJ>{_REASON}",
     rf"(?:(?:no|nope|hey|stop|wait|whoa) )*{_LEAVE} <OBJ>{_IN_PLACE}?{_REASON}",
 )
 def reprimand_leave(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"Put the book back, that's Mia's!" (stops the robot if it is acting; without a reason, only
-    that and "do not pick it up"), "Leave the mug alone, it's Jake's" (a prohibition with its
-    reason: the claim and the owner's norm too, as a reprimand)."""
+    that and "do not pick it up"), "Put that down, it's Mia's" (without a reason, "put that down"
+    asks to put it down), "Leave the mug alone, it's Jake's" (a prohibition with its reason: the
+    claim and the owner's norm too, as a reprimand)."""
     obj = r.obj(m["obj"])
     action = r.action("touch")
     if group(m, "rest") is None:
@@ -253,6 +255,22 @@ def claim_gift(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
         return None
     obj = r.obj(m["obj"])
     return (Claim(obj, giver, negated=True), Claim(obj, taker, exclusive=True))
+
+
+@GRAMMAR.rule("claim",
+              rf"<THINK>(?P<a>i|{_WHO}<NAME>) and (?P<b>i|me|{_WHO}<NAME>) (?:both )?(?:share|co-own|own) "
+              r"<OBJ>(?: together| jointly)?",
+              rf"<THINK>(?P<a>i|{_WHO}<NAME>) (?:share|shares) <OBJ> with (?P<b>me|<NAME>)",
+              r"<THINK><OBJ> (?:is|are) (?:shared|co-owned|owned jointly|jointly owned) by (?P<a>me|<NAME>) "
+              r"and (?P<b>me|<NAME>)")
+def claim_shared(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"Jake and I share the bottle", "I share the lamp with Mia", "The bottle is shared by Jake and
+    Casey": each of the two owns it (neither alone)."""
+    agents = [r.owner("me" if w in ("i", "me") else w) for w in (m["a"], m["b"])]
+    if agents[0] == agents[1] or {ANY, NOBODY} & set(agents):
+        return None
+    obj = r.obj(m["obj"])
+    return tuple(Claim(obj, a) for a in agents)
 
 
 def _subjects(phrase: str, r: Resolver) -> tuple[list[str], bool] | None:

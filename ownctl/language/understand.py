@@ -39,6 +39,7 @@ from ownctl.language.instructions import Claim, Instruction, Introduce, NormInst
 from ownctl.language.lexicon import (
     ACTION_PHRASES,
     ANYONE_WORDS,
+    ASIDES,
     CLASS_HEADS,
     DISCOURSE,
     HEDGES,
@@ -156,6 +157,8 @@ def _parse_one(utterance: str, ctx: Context) -> Understanding | None:
         if found is None:
             continue
         rule, instructions = found
+        if cap is None and (lead := _LEAD_HEDGE.match(variant)):  # a rule that took the hedge in
+            cap = hedge_of(lead["h"])
         if cap is not None:
             instructions = _hedged(instructions, cap)
         intent = _intent(rule, instructions)
@@ -198,6 +201,8 @@ def _has_content(text: str, ctx: Context) -> bool:
     be a name: "that's Bob's")."""
     known = spelling.vocabulary()
     names = {n.lower() for n in (*ctx.agents, *ctx.objects, *ctx.colors, *ctx.areas, *ctx.categories)}
+    if normalize(text) in ASIDES:
+        return False
     return any(w in _CONTENT or w in names or w.removesuffix("s") in names or w not in known
                for w in normalize(text).split())
 

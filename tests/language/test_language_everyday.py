@@ -259,3 +259,50 @@ def test_an_utterance_at_the_limit_is_understood() -> None:
     assert texts(utterance) == {"claim hat olga"}
 
 
+
+
+# -- shared things, hedges every claim form keeps, asides, "put that down" with a reason ------------
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("Bo and I share the kettle.", {"claim kettle bo", "claim kettle olga"}),
+    ("Casey and Jake co-own the teapot", {"claim teapot casey", "claim teapot jake"}),
+    ("I share the cap with Xuan", {"claim cap olga", "claim cap xuan"}),
+    ("The hat is jointly owned by Bo and Casey.", {"claim hat bo", "claim hat casey"}),
+    ("I believe Bo and Jake share the ball", {"claim ball bo --p 0.8", "claim ball jake --p 0.8"}),
+])
+def test_a_shared_thing_is_claimed_for_each_owner(utterance: str, want: set[str]) -> None:
+    assert texts(utterance) == want
+
+
+def test_sharing_with_oneself_or_with_nobody_is_not_a_claim() -> None:
+    for utterance in ("Bo and Bo share the kettle", "Nobody and I share the kettle"):
+        with pytest.raises(NotUnderstood):
+            understand(utterance, CTX)
+
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("I think Xuan owns the hat", {"claim hat xuan --p 0.8"}),
+    ("I guess Jake is the owner of the teapot", {"claim teapot jake --p 0.6"}),
+    ("I'm quite sure that Bo owns the glove.", {"claim glove bo --p 0.8"}),
+    ("Possibly the kettle is Casey's.", {"claim kettle casey --p 0.6"}),
+])
+def test_an_opening_hedge_lowers_every_kind_of_claim(utterance: str, want: set[str]) -> None:
+    assert texts(utterance) == want
+
+
+@pytest.mark.parametrize(("utterance", "aside"), [
+    ("The glove is Bo's, by the way.", "by the way"),
+    ("For the record, the hat is mine.", "For the record"),
+    ("The teapot is Jake's, to be honest", "to be honest"),
+])
+def test_an_aside_between_commas_is_skipped(utterance: str, aside: str) -> None:
+    got = understand(utterance, CTX)
+    assert len(got.texts()) == 1 and got.texts()[0].startswith("claim ")
+    assert f"(ignored '{aside}')" in got.reply
+
+
+def test_put_that_down_with_a_reason_is_a_reprimand_and_without_one_a_request() -> None:
+    acting = replace(CTX, about="glove", action="pickUp")
+    assert texts("Hey, put that down, it's Casey's!", acting) == {
+        "skip glove", "claim glove casey", "forbid pickUp on glove", "forbid pickUp if ownedBy casey"}
+    assert texts("Put that down.", acting) == {"check putDown glove"}
