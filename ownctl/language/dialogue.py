@@ -29,17 +29,19 @@ from ownctl.language.resolve import Resolver
 
 GRAMMAR = Grammar()
 
-_TASK_OPENING = r"(?:(?:can|could|would|will) you |go |go and |now |let us |time to |i want you to |" \
-                r"you should |you can )?"
+_TASK_OPENING = r"(?:(?:can|could|would|will) you |go |go and |go ahead and |now |let us |time to |" \
+                r"i want you to |you should |you can )?"
 _ALL = (
     r"(?:everything|it all|all of it|all of this|all this|all that|"
     r"all(?: of)?(?: the| this| that| these| those)?"
-    r"(?: (?:objects|blocks|things|stuff|items|cubes|junk|mess))?)(?: up| away| out| off)?"
+    r"(?: (?:objects|blocks|things|stuff|items|cubes|junk|mess|rubbish|garbage|trash|litter))?)"
+    r"(?: up| away| out| off)?"
 )
 _PLACE = r"(?: (?:off |up )?(?:the|this|your|my) (?:table|workspace|desk|work area|surface|area)" \
          r"(?: (?:into|in) the (?:trash|bin))?)?"
 _TASK_END = r"(?: (?:now|for me|right now|please))?"
-_QUESTION_LEAD = r"(?:(?:do you know|can you tell me|could you tell me|tell me|i wonder|i want to know) )?"
+_QUESTION_LEAD = (r"(?:(?:do you know|can you tell me|could you tell me|tell me|i wonder|i want to know|"
+                  r"(?:may|can|could) i ask(?: you)?|i would like to know|any idea) )?")
 _GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"
 
 
@@ -76,9 +78,12 @@ def ask_owner(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     r"(?:which|what) (?:things|objects|stuff|items|ones) (?:belong|belongs) to (?P<who>me|<NAME>)",
     r"(?:which|what) (?:things|objects|items|ones) (?:do|does) (?P<who>i|<NAME>) own",
     r"(?:what|which things) (?:is|are) owned by (?P<who>me|<NAME>)",
+    r"(?:do|does) (?P<who>i|<NAME>) own (?:anything|something|any of (?:this|these|them|the things))",
+    r"(?:is|are) (?:anything|something|any of (?:this|these|them|the things)) (?P<who>mine|<NAME> 's)",
 )
 def ask_owned(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"What do I own?", "What does Casey own?", "What's mine?", "Which things belong to Jake?"."""
+    """"What do I own?", "What does Casey own?", "What's mine?", "Which things belong to Jake?",
+    "Does Casey own anything?"."""
     word = m["who"]
     who = r.owner("me" if word in ("i", "mine") else word)
     return None if who.startswith("\0") or who == "any" else (AskOwned(who),)
@@ -161,7 +166,8 @@ def trash_all(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
 
 @GRAMMAR.rule(
     "task",
-    rf"{_TASK_OPENING}(?:{actions_regex('collect')}|pick up) {_ALL}{_PLACE}"
+    rf"{_TASK_OPENING}(?:{actions_regex('collect')}|pick up|bring back|take back|put back) {_ALL}{_PLACE}"
+    rf"(?: home| back home)?"
     rf"(?: and (?:(?:bring|take|put) (?:home|back|away) (?:it|them)|(?:bring|take|put) (?:it|them) "
     rf"(?:home|back|away)))?{_TASK_END}",
     rf"{_TASK_OPENING}tidy(?: up)?{_PLACE}{_TASK_END}",

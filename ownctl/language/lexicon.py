@@ -91,6 +91,14 @@ HEDGES: dict[str, float] = {
     "almost certain": 0.8, "i am almost certain": 0.8, "most likely": 0.8, "possibly": 0.6,
 }
 
+#: Who someone is to the speaker, said before their name ("my sister Mia": Mia).
+KIN = frozenset({
+    "sister", "brother", "friend", "colleague", "coworker", "co-worker", "roommate", "flatmate",
+    "housemate", "wife", "husband", "partner", "son", "daughter", "mom", "mum", "dad", "mother",
+    "father", "boss", "neighbour", "neighbor", "cousin", "aunt", "uncle", "grandma", "grandpa",
+    "girlfriend", "boyfriend", "kid", "child", "niece", "nephew", "guest", "flat-mate", "room-mate",
+})
+
 #: Asides that say nothing when they stand alone between commas ("The keys are Xuan's, by the way").
 ASIDES = frozenset({
     "by the way", "btw", "fyi", "for the record", "for your information", "just saying", "you know",

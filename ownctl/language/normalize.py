@@ -77,6 +77,7 @@ REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
         (r"\bwanna\b", "want to"),
         (r"\bnever ever\b|\bdo not ever\b|\bdo not you ever\b|\bnever ever ever\b", "never"),
         (r"\bhow come\b", "why"),
+        (r"\b(is|are|was|were) still\b", r"\1"),
         (r"\bwhatever\b(?= (?:is|are|belongs|belong|has|does|nobody|someone|you)\b)", "anything that"),
     )
 )

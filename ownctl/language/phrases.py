@@ -27,7 +27,7 @@ from dataclasses import dataclass
 from itertools import product
 
 from ownctl.language.lexicon import CLASS_HEADS, HEDGES, alternation, hedge_of
-from ownctl.language.resolve import NOBODY, Resolver
+from ownctl.language.resolve import NOBODY, POSSESSIVE_PRONOUNS, Resolver
 from ownctl.logic.names import letters_pattern, word_pattern
 from ownctl.logic.rules import ANY, Literal
 
@@ -69,7 +69,7 @@ def owners(rest: str, possessive: bool, negated: bool, r: Resolver) -> list[Owne
     if m is None:
         return None
     word = m["owner"]
-    if possessive != (word == "mine" or word.endswith(" 's")):
+    if possessive != (word == "mine" or word in POSSESSIVE_PRONOUNS or word.endswith(" 's")):
         return None
     neg = negated ^ bool(m["neg"])
     exclusive = bool(m["only"]) or bool(m["excl"].strip())

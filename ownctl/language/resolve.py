@@ -30,7 +30,9 @@ NOBODY = "\0nobody"
 DETERMINERS = frozenset({"this", "that", "the", "these", "those", "a", "an", "my", "your", "our",
                          "his", "her", "their", "its"})
 #: Possessive determiners that refer to the last agent named ("Jake gave me his pen").
-PRONOUNS = frozenset({"his", "her", "their", "he", "she", "they", "him", "them"})
+PRONOUNS = frozenset({"his", "her", "their", "he", "she", "they", "him", "them", "hers", "theirs"})
+#: The pronouns that stand for an owner after "is" ("it's still hers"), as "mine" does.
+POSSESSIVE_PRONOUNS = frozenset({"his", "hers", "theirs"})
 
 
 class Decline(Exception):

@@ -95,6 +95,8 @@ def _reprimand(obj: str, found: list[Owned], action: str | None, r: Resolver) ->
     r"(?:(?:no|nope|hey|stop|wait|whoa) )*(?:do not|never) <ACT> <OBJ> (?:because |since |as )?"
     rf"(?:it|that|this|that one|this one) {_VERB} (?P<rest>.+)",
     rf"<OBJ> {_VERB} (?P<rest>.+?) (?:so )?(?:do not|never) <ACT> (?:it|that|this|that one|this one)",
+    r"(?:(?:no|nope|hey|stop|wait|whoa) )*(?P<obj>that|this|it)(?: one)? is not (?:yours|for you) to <ACT> "
+    rf"(?:because |since |as )?(?:it|that|this|that one|this one) {_VERB} (?P<rest>.+)",
 )
 def reprimand_claim(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"No, that's mine!", "Don't, that's Casey's!", "Don't throw that away, it's Jake's"."""
@@ -151,6 +153,14 @@ def reprimand(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"No!", "Stop", "Don't do that", "You can't do that": stop, and forbid the action on the object."""
     obj = r.about()
     return (Skip(obj), Permission(r.current_action(m.group()), obj, True))
+
+
+@GRAMMAR.rule("norm", r"(?P<cls>.+?) (?:is|are) (?:off limits|off-limits|out of bounds|not to be touched)"
+                      r"(?: (?:to|for) you)?")
+def off_limits(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"Jake's stuff is off limits" (not to be picked up: a norm), "The mug is off limits" (a
+    permission about one object). Before the claims: "... are off limits" names no owner."""
+    return _subject_norm("forbid", m["cls"], "touch", r)
 
 
 # -- claims ----------------------------------------------------------------------------------
@@ -240,6 +250,21 @@ def claim_former(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | Non
 
 _GIVE = r"(?:just |have |has |had |will |already )?(?:gave|give|gives|given|giving|sold|sell|sells|" \
         r"selling|handed|hand|hands|handing|passed|pass|passes|passing|donated|traded)(?: over)?"
+
+
+@GRAMMAR.rule("claim",
+              rf"(?P<owner>he|she|they|{_WHO}<NAME>) (?:has |had )?(?:lent|loaned|lends) (?:me|us) <OBJ>",
+              rf"(?P<owner>he|she|they|{_WHO}<NAME>) (?:has |had )?(?:lent|loaned|lends) <OBJ> to (?:me|us)",
+              r"(?:i|we) (?:am |are |have |had )?(?:borrowed|borrowing|borrow) <OBJ> from "
+              r"(?P<owner>him|her|them|<NAME>)",
+              r"<OBJ> (?:is|was|are|were) (?:borrowed|on loan) from (?P<owner>him|her|them|<NAME>)")
+def claim_lent(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"Mia lent me the book", "I borrowed the pen from Jake", "The scarf is on loan from Xuan": the
+    lender still owns it (who holds it now is not said to own it)."""
+    owner = r.owner(m["owner"])
+    if owner in (ANY, NOBODY) or owner == r.ctx.speaker:
+        return None
+    return (Claim(r.obj(m["obj"]), owner),)
 
 
 @GRAMMAR.rule("claim", rf"(?P<giver>i|he|she|they|{_WHO}<NAME>) (?:am |is |are )?{_GIVE} <OBJ> (?:over )?to "
@@ -336,6 +361,7 @@ def topic(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 # -- object-specific permissions -------------------------------------------------------------
 
 @GRAMMAR.rule("permission", "(?P<stop><REPRIMAND>)?<FORBID><ACT> <OBJ>", rf"{_LEAVE} <OBJ>{_IN_PLACE}?",
+              "(?P<stop><REPRIMAND>)?<OBJ> is not (?:yours|for you) to <ACT>",
               rf"(?P<stop><REPRIMAND>)?(?:stop|quit) {_GERUND} <OBJ>", rf"<OBJ> {_STAY}")
 def forbid_object(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Don't throw this wallet away", "Leave that alone" (= don't pick it up), "Hey, don't throw

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass, replace
+from functools import lru_cache
 
 from ownctl.errors import OwnctlError
 from ownctl.language import dialogue, spelling, statements
@@ -43,6 +44,7 @@ from ownctl.language.lexicon import (
     CLASS_HEADS,
     DISCOURSE,
     HEDGES,
+    KIN,
     NOBODY_WORDS,
     SPEAKER_WORDS,
     TIME_WORDS,
@@ -137,10 +139,24 @@ def _hedged(instructions: tuple[Instruction, ...], cap: float) -> tuple[Instruct
     return tuple(replace(i, p=min(i.p, cap)) if isinstance(i, Claim) else i for i in instructions)
 
 
+@lru_cache(maxsize=64)
+def _apposition(agents: frozenset[str]) -> re.Pattern[str]:
+    names = alternation(tuple(a.lower() for a in agents))
+    return re.compile(rf"\b(?:my|our|your) {alternation(tuple(KIN))} (?={names})")
+
+
+def _appositions(text: str, ctx: Context) -> str:
+    """``text`` with "my sister" dropped before a known agent's name ("belongs to my sister mia":
+    Mia); a relation before a word that is not an agent's name stays."""
+    if not ctx.agents or " " not in text:
+        return text
+    return _apposition(ctx.agents).sub("", text)
+
+
 def _parse_one(utterance: str, ctx: Context) -> Understanding | None:
     """One sentence as a whole, or None if no rule matches it (a rule that knows why it cannot
     help raises NotUnderstood with its reason)."""
-    text = normalize(utterance)
+    text = _appositions(normalize(utterance), ctx)
     if not text:
         raise NotUnderstood(utterance, "there is nothing to understand")
     first: OwnctlError | None = None  # a variant's error is reported only if no variant parses

@@ -306,3 +306,51 @@ def test_put_that_down_with_a_reason_is_a_reprimand_and_without_one_a_request() 
     assert texts("Hey, put that down, it's Casey's!", acting) == {
         "skip glove", "claim glove casey", "forbid pickUp on glove", "forbid pickUp if ownedBy casey"}
     assert texts("Put that down.", acting) == {"check putDown glove"}
+
+
+# -- lending, "hers", kin before a name, "off limits", "not yours to", asking leads, rubbish ---------
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("Bo lent me the glove.", {"claim glove bo"}),
+    ("I'm borrowing the kettle from Jake", {"claim kettle jake"}),
+    ("The cap is on loan from Xuan.", {"claim cap xuan"}),
+    ("Jake loaned me the ball, and it's still his.", {"claim ball jake"}),
+    ("The teapot belongs to my neighbour Casey.", {"claim teapot casey"}),
+    ("My roommate Bo owns the hat", {"claim hat bo"}),
+])
+def test_a_lender_or_a_named_relative_owns_it(utterance: str, want: set[str]) -> None:
+    assert texts(utterance) == want
+
+
+def test_lending_to_oneself_or_from_nobody_is_not_a_claim() -> None:
+    for utterance in ("I lent me the glove", "I borrowed the glove from nobody"):
+        with pytest.raises(OwnctlError):
+            understand(utterance, CTX)
+
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("Casey's things are off limits.", {"forbid pickUp if ownedBy casey"}),
+    ("Anything in the hall is off-limits to you", {"forbid pickUp if inArea hall"}),
+    ("The teapot is off limits", {"forbid pickUp on teapot"}),
+])
+def test_off_limits_is_not_to_be_picked_up(utterance: str, want: set[str]) -> None:
+    assert texts(utterance) == want
+
+
+def test_not_yours_to_do_forbids_it_and_with_a_reason_is_a_reprimand() -> None:
+    acting = replace(CTX, about="hat", action="trash")
+    assert texts("Hey, that's not yours to throw away!", acting) == {"skip hat", "forbid trash on hat"}
+    assert texts("No, that's not yours to throw away, it's Bo's", acting) == {
+        "skip hat", "claim hat bo", "forbid trash on hat", "forbid trash if ownedBy bo"}
+
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("Can I ask who owns the glove?", {"owners glove"}),
+    ("Does Bo own anything?", {"owners --agent bo"}),
+    ("Is anything mine?", {"owners --agent olga"}),
+    ("Please throw away all the garbage.", {"run trashAll"}),
+    ("Go ahead and throw away all the junk", {"run trashAll"}),
+    ("Take everything back home.", {"run collectAll"}),
+])
+def test_asking_leads_and_whole_tasks(utterance: str, want: set[str]) -> None:
+    assert texts(utterance) == want
