@@ -101,3 +101,24 @@ def test_a_store_with_data_upgrades_to_the_head_and_back_on_postgresql(pg_store:
             assert conn.execute(text("SELECT * FROM touches ORDER BY object_id, agent_id")).all() == touches
     finally:
         engine.dispose()
+
+
+def test_names_in_any_script_on_postgresql(pg_store: Ownctl, tmp_path: Path) -> None:
+    """Names in any script (docs/architecture.md, section 2) are stored, found and listed on
+    PostgreSQL as on SQLite: the same answers from both stores."""
+    lite = Ownctl(tmp_path / "lite.db")
+    answers = []
+    for store in (pg_store, lite):
+        store("init")
+        for agent in ("Jose\u0301", "\u0414\u0438\u043c\u0430", "\u0930\u093e\u092e", "alexis"):
+            store("agent", "add", agent)
+        store("object", "add", "ta\u0301za", "--color", "gr\u00fcn", "--pos", "0.1,0.1")
+        store("object", "add", "\u5c71", "--color", "red", "--pos", "0.3,0.1")
+        store("claim", "t\u00e1za", "Jos\u00e9")
+        store("say", "Don't throw away \u0930\u093e\u092e's things", "--as", "alexis")
+        store("say", "\u5c71 is mine", "--as", "\u0930\u093e\u092e")
+        answers.append((store.json("agent", "list"), store.json("owners", "t\u00e1za")["owners"][0],
+                        store.json("check", "trash", "\u5c71", code=3)["decision"],
+                        [r["text"] for r in store.json("rules", "list")]))
+    assert answers[0] == answers[1]
+    assert answers[0][1]["agent"] == "Jos\u00e9" and answers[0][2] == "forbidden"
