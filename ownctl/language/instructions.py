@@ -63,11 +63,18 @@ class Claim:
         return f"claim {self.object} {self.agent}{flags}{conf}"
 
     def say(self) -> str:
-        """``wallet belongs to casey`` (or ``does not belong``, ``... alone``, ``probably ...``)."""
-        hedge = "probably " if self.p < 1.0 else ""
-        if self.negated:
-            return f"{self.object} {hedge}does not belong to {self.agent}"
-        return f"{self.object} {hedge}belongs to {self.agent}{' alone' if self.exclusive else ''}"
+        """``wallet belongs to casey`` (or ``does not belong``, ``... alone``, ``probably ...``, and
+        ``may belong`` for a guess: "I guess", "maybe", below 0.7)."""
+        if self.p < GUESS:
+            verb = "may not belong" if self.negated else "may belong"
+        else:
+            hedge = "probably " if self.p < 1.0 else ""
+            verb = f"{hedge}does not belong" if self.negated else f"{hedge}belongs"
+        alone = " alone" if self.exclusive and not self.negated else ""
+        return f"{self.object} {verb} to {self.agent}{alone}"
+
+
+GUESS = 0.7  # below this confidence a claim is said as a guess ("may belong"), else "probably"
 
 
 @dataclass(frozen=True)

@@ -354,3 +354,13 @@ def test_not_yours_to_do_forbids_it_and_with_a_reason_is_a_reprimand() -> None:
 ])
 def test_asking_leads_and_whole_tasks(utterance: str, want: set[str]) -> None:
     assert texts(utterance) == want
+
+
+@pytest.mark.parametrize(("utterance", "said"), [
+    ("Maybe the hat is Bo's.", "hat may belong to bo"),
+    ("I guess the hat isn't Jake's", "hat may not belong to jake"),
+    ("The hat is probably Bo's", "hat probably belongs to bo"),
+    ("The hat is Bo's", "hat belongs to bo"),
+])
+def test_the_reply_says_a_guess_as_a_guess(utterance: str, said: str) -> None:
+    assert f"Noted: {said}." in understand(utterance, CTX).reply
