@@ -79,6 +79,9 @@ def ask_owner(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     r"(?:which|what) (?:things|objects|items|ones) (?:do|does) (?P<who>i|<NAME>) own",
     r"(?:what|which things) (?:is|are) owned by (?P<who>me|<NAME>)",
     r"(?:do|does) (?P<who>i|<NAME>) own (?:anything|something|any of (?:this|these|them|the things))",
+    r"(?:which|what) (?:ones |things |objects |items )?(?:here )?"
+    r"(?:of (?:these|those|them|the)(?: things| objects| items)?(?: here)? )?"
+    r"(?:is|are) (?P<who>mine|<NAME> 's)",
     r"(?:is|are) (?:anything|something|any of (?:this|these|them|the things)) (?P<who>mine|<NAME> 's)",
 )
 def ask_owned(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:

@@ -50,7 +50,7 @@ FRAGMENTS: dict[str, str] = {
              r"i allow you to|i permit you to|you have my permission to) ",
     # the opening of a reprimand ("no", "hey", "stop", "don't", ...), each word followed by a space
     "REPRIMAND": r"(?:(?:no|nope|hey|stop|wait|whoa|oi|careful|do not|stop it|stop that|"
-                 r"do not do that|not that(?: one)?) )+",
+                 r"do not do that|not that(?: one)?|hands off) )+",
     # an optional hedge opening a claim ("i think that ...")
     "THINK": r"(?P<think>(?:i think|i believe|i guess|i am sure|i am pretty sure)(?: that)? )?",
     # an agent or object name

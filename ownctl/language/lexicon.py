@@ -125,8 +125,9 @@ ADJECTIVES = frozenset({
     "favorite", "same", "whole", "last", "first", "own",
 })
 
-#: Words meaning the speaker, any agent, or no agent, in owner positions.
-SPEAKER_WORDS = frozenset({"me", "mine", "my", "i", "myself"})
+#: Words meaning the speaker, any agent, or no agent, in owner positions ("ours": the speaker owns
+#: it, with others the sentence may name: "that's ours, mine and Jake's").
+SPEAKER_WORDS = frozenset({"me", "mine", "my", "i", "myself", "ours"})
 ANYONE_WORDS = frozenset({
     "someone", "anyone", "everyone", "someone else", "anyone else", "other people", "others",
     "another person", "other agents", "somebody else", "people",

@@ -69,7 +69,7 @@ def owners(rest: str, possessive: bool, negated: bool, r: Resolver) -> list[Owne
     if m is None:
         return None
     word = m["owner"]
-    if possessive != (word == "mine" or word in POSSESSIVE_PRONOUNS or word.endswith(" 's")):
+    if possessive != (word in ("mine", "ours") or word in POSSESSIVE_PRONOUNS or word.endswith(" 's")):
         return None
     neg = negated ^ bool(m["neg"])
     exclusive = bool(m["only"]) or bool(m["excl"].strip())
@@ -154,7 +154,7 @@ PREMODIFIERS: tuple[Modifier, ...] = (
 POSTMODIFIERS: tuple[Modifier, ...] = (
     _mod(rf"{_REL}{_BE}{_NOT}in (?:the )?(?:category (?P<k>{_NAME})|(?P<k2>{_NAME}) category)",
          _category),
-    _mod(rf"{_REL}{_BE}{_NOT}(?P<prep>in|on|inside|within|at|outside(?: of)?) (?:the )?(?P<a>{_NAME})"
+    _mod(rf"{_REL}{_BE}{_NOT}(?P<prep>in|on|inside|within|at|from|outside(?: of)?) (?:the )?(?P<a>{_NAME})"
          r"(?P<said> area| zone| region)?", _area),
     _mod(rf"{_REL}(?P<neg>(?:does|do) not )?belongs? to {_WHO}", _owner),
     _mod(rf"{_REL}{_BE}{_NOT}owned by {_WHO}", _owner),

@@ -362,7 +362,8 @@ def topic(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 
 @GRAMMAR.rule("permission", "(?P<stop><REPRIMAND>)?<FORBID><ACT> <OBJ>", rf"{_LEAVE} <OBJ>{_IN_PLACE}?",
               "(?P<stop><REPRIMAND>)?<OBJ> is not (?:yours|for you) to <ACT>",
-              rf"(?P<stop><REPRIMAND>)?(?:stop|quit) {_GERUND} <OBJ>", rf"<OBJ> {_STAY}")
+              rf"(?P<stop><REPRIMAND>)?(?:stop|quit) {_GERUND} <OBJ>", rf"<OBJ> {_STAY}",
+              rf"(?:would|do) you mind not {_GERUND} <OBJ>")
 def forbid_object(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Don't throw this wallet away", "Leave that alone" (= don't pick it up), "Hey, don't throw
     that away!" (stops it too, if the robot is acting), "Don't touch my book" (the book is mine)."""
@@ -446,7 +447,8 @@ def _norm(sign: str, m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] |
 
 
 @GRAMMAR.rule("norm", "<FORBID><ACT> (?P<cls>.+)", rf"{_LEAVE} (?P<cls>.+?){_IN_PLACE}?",
-              "<FORBID><DO> (?P<cond>.+)", rf"(?:stop|quit) {_GERUND} (?P<cls>.+)", rf"(?P<cls>.+?) {_STAY}")
+              "<FORBID><DO> (?P<cond>.+)", rf"(?:stop|quit) {_GERUND} (?P<cls>.+)", rf"(?P<cls>.+?) {_STAY}",
+              rf"(?:would|do) you mind not {_GERUND} (?P<cls>.+)")
 def forbid_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"Don't touch my stuff", "Never trash red things", "Don't do that if it's red", "Stop throwing
     away my things", "Don't trash things of Jake's or Xuan's" (two rules)."""

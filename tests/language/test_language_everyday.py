@@ -364,3 +364,23 @@ def test_asking_leads_and_whole_tasks(utterance: str, want: set[str]) -> None:
 ])
 def test_the_reply_says_a_guess_as_a_guess(utterance: str, said: str) -> None:
     assert f"Noted: {said}." in understand(utterance, CTX).reply
+
+
+# -- "would you mind not", "from the hall", "ours", "which of these are mine", "hands off" --------------
+
+@pytest.mark.parametrize(("utterance", "ctx", "want"), [
+    ("Would you mind not picking up my glove?", CTX, {"claim glove olga", "forbid pickUp on glove"}),
+    ("Do you mind not throwing away blue things", CTX, {"forbid trash if isColored blue"}),
+    ("Don't take anything from the counter.", CTX, {"forbid pickUp if inArea counter"}),
+    ("It's ours, mine and Bo's.", replace(CTX, about="kettle"), {"claim kettle olga", "claim kettle bo"}),
+    ("Which of those are Casey's?", CTX, {"owners --agent casey"}),
+    ("Which ones here are mine?", CTX, {"owners --agent olga"}),
+])
+def test_more_everyday_forms(utterance: str, ctx: Context, want: set[str]) -> None:
+    assert texts(utterance, ctx) == want
+
+
+def test_hands_off_opens_a_reprimand() -> None:
+    acting = replace(CTX, about="cap", action="pickUp")
+    assert texts("Hands off, that's Xuan's!", acting) == {
+        "skip cap", "claim cap xuan", "forbid pickUp on cap", "forbid pickUp if ownedBy xuan"}
