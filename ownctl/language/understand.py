@@ -31,6 +31,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, replace
 from functools import lru_cache
+from itertools import product
 
 from ownctl.errors import OwnctlError
 from ownctl.language import dialogue, spelling, statements
@@ -399,6 +400,33 @@ def _formal_norm(utterance: str) -> Understanding | None:
     return Understanding("norm", instructions, reply("norm", instructions), "formal norm")
 
 
+#: At most this many ways of reading the words near several others are tried.
+MAX_READINGS = 16
+
+
+def _corrected(utterance: str, readings: list[spelling.Reading], unclear: dict[str, list[str]],
+               ctx: Context) -> Understanding | None:
+    """The utterance understood with its misspelt words read as the words they are near: each
+    word near one word is read as it; a word near several is read as each in turn, and taken as
+    read when every reading that parses stores the same ("Who ownes the book?": only "owns"
+    parses). None when no reading parses, or when readings that parse store different things."""
+    choices = [[spelling.Reading(w, c) for c in near] for w, near in unclear.items()]
+    found: list[tuple[frozenset[str], Understanding]] = []
+    for k, pick in enumerate(product(*choices)):
+        if k == MAX_READINGS:
+            return None
+        tried = [*readings, *pick]
+        try:
+            got = _understand(spelling.apply(utterance, tried), ctx)
+        except OwnctlError:
+            continue
+        notes = " ".join(r.note() for r in tried)
+        found.append((frozenset(got.texts()), replace(got, reply=f"{got.reply} {notes}".strip())))
+    if not found or len({texts for texts, _ in found}) > 1:
+        return None
+    return found[0][1]
+
+
 def understand(utterance: str, ctx: Context) -> Understanding:
     """What ``utterance``, said in ``ctx``, means: intent, instructions in order, and the reply.
 
@@ -418,14 +446,10 @@ def understand(utterance: str, ctx: Context) -> Understanding:
     except OwnctlError as err:
         first = err
     readings, unclear = spelling.corrections(normalize(utterance).split(), ctx)
-    if readings:
-        try:
-            got = _understand(spelling.apply(utterance, readings), ctx)
-        except OwnctlError:
-            pass
-        else:
-            notes = " ".join(r.note() for r in readings)
-            return replace(got, reply=f"{got.reply} {notes}".strip())
+    if readings or unclear:
+        got = _corrected(utterance, readings, unclear, ctx)
+        if got is not None:
+            return got
     if unclear and isinstance(first, NotUnderstood):
         maybe = "; ".join(f"{w!r} could be {' or '.join(repr(c) for c in cs)}" for w, cs in unclear.items())
         raise NotUnderstood(utterance, "; ".join(filter(None, (first.detail, maybe)))) from None

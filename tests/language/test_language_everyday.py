@@ -233,9 +233,14 @@ def test_short_words_and_short_names_must_be_exact() -> None:
         understand("Don't tuch the hat.", CTX)  # "tuch" has 4 letters
 
 
-def test_a_typo_near_two_words_is_refused_naming_both() -> None:
+def test_a_typo_near_several_words_is_read_as_the_one_that_makes_sense() -> None:
+    got = understand("Who ownes the hat?", CTX)  # of owns, owned, owner, owners and ones, only owns parses
+    assert got.texts() == ("owners hat",) and "(read 'ownes' as 'owns')" in got.reply
+
+
+def test_a_typo_near_several_words_none_of_which_makes_sense_is_refused_naming_them() -> None:
     with pytest.raises(NotUnderstood, match="'ownes' could be .*'owned'.*'owns'"):
-        understand("Who ownes the hat?", CTX)
+        understand("Who ownes the ownes?", CTX)
 
 
 # -- limits and time ---------------------------------------------------------------------------
@@ -384,3 +389,13 @@ def test_hands_off_opens_a_reprimand() -> None:
     acting = replace(CTX, about="cap", action="pickUp")
     assert texts("Hands off, that's Xuan's!", acting) == {
         "skip cap", "claim cap xuan", "forbid pickUp on cap", "forbid pickUp if ownedBy xuan"}
+
+
+def test_readings_of_a_typo_that_store_different_things_are_not_taken() -> None:
+    import sys
+
+    understanding = sys.modules["ownctl.language.understand"]
+    either = {"zorb": ["hat", "cap"]}  # near two objects: both readings parse, storing different things
+    assert understanding._corrected("Don't trash the zorb", [], either, CTX) is None
+    one = understanding._corrected("Don't trash the zorb", [], {"zorb": ["hat", "zzz"]}, CTX)
+    assert one is not None and one.texts() == ("forbid trash on hat",)
