@@ -10,7 +10,7 @@ that is not worth asking by ``ask.min_gain`` (the test ``run --ask`` applies) is
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from typing import Any
 
 from ownctl.app.context import AppContext, Done, use_case
@@ -44,7 +44,8 @@ def task_scope(mind: Any, task: str, objects: Sequence[str] | None) -> tuple[tup
     return steps, idx
 
 
-def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: int) -> dict[str, Any]:
+def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: int,
+            progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
     from ownctl.app.settings import asking
     from ownctl.mind.ask import IDENTITY, best_questions, expected_mistakes, task_reading, worth_asking
 
@@ -54,7 +55,8 @@ def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: i
     mind = load(tx, now).mind
     steps, idx = task_scope(mind, task, objects)
     before = expected_mistakes(mind, steps, idx, temper, task_reading(mind, steps) if read else IDENTITY)
-    ranked = best_questions(mind, steps, idx, top=top, temper=temper, read=read, ahead=ahead) if idx else []
+    ranked = (best_questions(mind, steps, idx, top=top, temper=temper, read=read, ahead=ahead,
+                             progress=progress) if idx else [])
     return {"task": task, "steps": list(steps), "objects": list(before.objects),
             "expected_mistakes": before.total, "min_gain": min_gain, "temper": temper, "read": read,
             "ahead": ahead,
@@ -67,12 +69,13 @@ def _ranked(tx: Tx, now: float, task: str, objects: Sequence[str] | None, top: i
 
 
 def questions(ctx: AppContext, task: str = "trashAll", objects: Sequence[str] | None = None,
-              top: int = 3) -> dict[str, Any]:
+              top: int = 3, progress: Callable[[int, int], None] | None = None) -> dict[str, Any]:
     """``{"task", "steps", "objects", "expected_mistakes", "permissions", "per_object", "questions"}``
     (``permissions``: how many the task's steps hold; each question's ``worth_asking``: whether its
-    gain reaches ``ask.min_gain``, as ``run --ask`` and ``ask --put`` require); writes nothing."""
+    gain reaches ``ask.min_gain``, as ``run --ask`` and ``ask --put`` require); writes nothing.
+    ``progress`` is told (questions valued, to value) as they are."""
     with ctx.read() as tx:
-        return _ranked(tx, ctx.now, task, objects, top)
+        return _ranked(tx, ctx.now, task, objects, top, progress)
 
 
 def pending_questions(tx: Tx) -> dict[str, dict[str, Any]]:
@@ -97,14 +100,14 @@ def clear_pending(tx: Tx, speaker: str | None) -> None:
 
 @use_case
 def put(ctx: AppContext, task: str = "trashAll", objects: Sequence[str] | None = None,
-        speaker: str | None = None) -> Done:
+        speaker: str | None = None, progress: Callable[[int, int], None] | None = None) -> Done:
     """Put the best question to ``speaker`` (default: the current speaker): pending until answered.
     When its gain is not worth asking by ``ask.min_gain``, nothing is put (``"put": None``) and the
     store is left as it was."""
     from ownctl.mind.ask import worth_asking
 
     with ctx.read() as tx:
-        ranked = _ranked(tx, ctx.now, task, objects, 1)
+        ranked = _ranked(tx, ctx.now, task, objects, 1, progress)
         who = speaker if speaker is not None else tx.meta.conversation().speaker
         if who is not None:
             tx.world.agent(who)  # an unknown speaker is an error naming the known agents

@@ -11,7 +11,7 @@ from typing import Annotated, Any
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, table
+from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, progress_bar, table
 
 
 def ask(
@@ -44,13 +44,20 @@ def ask(
     from ownctl.app import ask as app
 
     names = None if objects is None else [o.strip() for o in objects.split(",") if o.strip()]
+    if speaker is not None and not put:
+        raise typer.BadParameter("--as only applies with --put")
+    bar = None if quiet else progress_bar("valuing questions")
+    try:
+        if put:
+            done = app.put(app_ctx(ctx), task, names, speaker, bar)
+        else:
+            data = app.questions(app_ctx(ctx), task, names, top, bar)
+    finally:
+        if bar is not None:
+            bar.stop()
     if put:
-        done = app.put(app_ctx(ctx), task, names, speaker)
         emit(done.data, json_out, quiet, done.message)
         return
-    if speaker is not None:
-        raise typer.BadParameter("--as only applies with --put")
-    data = app.questions(app_ctx(ctx), task, names, top)
     rows = [[q["text"], _mistakes(q["gain"]), _answers(q["answers"])] for q in data["questions"]]
     title = (f"{data['task']}: {data['expected_mistakes']:.2f} expected mistakes on "
              f"{len(data['objects'])} objects")

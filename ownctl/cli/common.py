@@ -266,3 +266,36 @@ class OwnctlGroup(TyperGroup):
         except OwnctlError as exc:
             report_error(ctx, exc)
             raise typer.Exit(exc.exit_code) from None
+
+
+class ProgressBar:
+    """A rich progress bar on stderr, shown from the first report of progress on (so option errors
+    print alone), and only on a terminal; call it with (done, total)."""
+
+    def __init__(self, progress: Any, description: str) -> None:
+        self.progress, self.description = progress, description
+        self.task: Any = None
+
+    def __call__(self, done: int, total: int) -> None:
+        if self.task is None:
+            self.progress.start()
+            self.task = self.progress.add_task(self.description, total=total)
+        self.progress.update(self.task, completed=done, total=total)
+
+    def stop(self) -> None:
+        """Remove the bar (it is transient), if it was shown."""
+        if self.task is not None:
+            self.progress.stop()
+
+
+def progress_bar(description: str) -> ProgressBar | None:
+    """A :class:`ProgressBar` for long work (an experiment, valuing questions), or None when stderr
+    is not a terminal."""
+    from rich.console import Console
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
+
+    console = Console(stderr=True)
+    if not console.is_terminal:
+        return None
+    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn())
+    return ProgressBar(Progress(*columns, console=console, transient=True), description)

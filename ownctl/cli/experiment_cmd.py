@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Annotated, Any
 
 import typer
 
-from ownctl.cli.common import JsonOpt, QuietOpt, wrote
+from ownctl.cli.common import JsonOpt, QuietOpt, progress_bar, wrote
 from ownctl.cli.help import Group
 from ownctl.config import DECIDE_WINDOW
 from ownctl.humanize import plural
@@ -63,7 +63,7 @@ def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, 
          family_seed: int | None = None, scheduler: str | None = None, decide: str = "map") -> None:
     from ownctl.app import experiment as app
 
-    bar = None if quiet else _progress_bar(experiment)
+    bar = None if quiet else progress_bar(f"experiment {experiment}")
     try:  # errors are reported by the command group, like every command's
         result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, bar, families,
                          family_seed, scheduler=scheduler, decide=decide)
@@ -80,36 +80,6 @@ def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, 
         from ownctl.app.experiment import reliability_path
 
         wrote(reliability_path(plot), quiet)
-
-
-class _Bar:
-    """A rich progress bar on stderr, shown from the first trial on (so option errors print alone),
-    and only on a terminal."""
-
-    def __init__(self, progress: Any, description: str) -> None:
-        self.progress, self.description = progress, description
-        self.task: Any = None
-
-    def __call__(self, done: int, total: int) -> None:
-        if self.task is None:
-            self.progress.start()
-            self.task = self.progress.add_task(self.description, total=total)
-        self.progress.update(self.task, completed=done, total=total)
-
-    def stop(self) -> None:
-        if self.task is not None:
-            self.progress.stop()
-
-
-def _progress_bar(experiment: str) -> _Bar | None:
-    from rich.console import Console
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn
-
-    console = Console(stderr=True)
-    if not console.is_terminal:
-        return None
-    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), TimeElapsedColumn())
-    return _Bar(Progress(*columns, console=console, transient=True), f"experiment {experiment}")
 
 
 @experiment_app.command("norms")

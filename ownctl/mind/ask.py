@@ -18,7 +18,7 @@ ranks the candidates (docs/asking.md, sections 2-3).
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import TypeVar
 
@@ -704,7 +704,7 @@ def horizon(question: Question, names: Sequence[str]) -> int:
 def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str], top: int = 3,
                    kinds: Sequence[str] = KINDS, questions: Sequence[Question] | None = None,
                    taught: bool = False, temper: float = EXACT, read: bool = False,
-                   ahead: int = 0) -> list[Scored]:
+                   ahead: int = 0, progress: Progress | None = None) -> list[Scored]:
     """The ``top`` questions of largest value of information, best first; equal gains (to 1e-9) in
     :meth:`Question.sort_key` order over ``objects``' order. ``taught``: the objects' permissions
     will be taught as each is attempted, so a permission question's value counts only the
@@ -714,20 +714,38 @@ def best_questions(mind: Mind, steps: Sequence[str], objects: Sequence[int | str
     questions as the task's instructor teaches, which implies ``taught``: the ``ahead`` best of
     them and every question about the first object (the one being decided) are valued again
     with the look-ahead over the permissions the instructor gives that object next
-    (:func:`mistakes_ahead`), and ranked on it (docs/asking.md, section 4); 0: no look-ahead."""
+    (:func:`mistakes_ahead`), and ranked on it (docs/asking.md, section 4); 0: no look-ahead.
+    ``progress`` is told (valued, to value) after each value of information."""
     check_temper(temper)
     taught = taught or check_ahead(ahead) > 0
     pool = (candidates(mind, steps, objects, kinds, temper=temper, read=read) if questions is None
             else list(questions))
     objs = list(objects)
     names = [mind.objects[mind.obj(o)].name for o in objs]
-    scored = _ranked(mind, steps, objs, names, pool, taught, temper, read, ahead=False)
+    tick = _Ticker(progress, len(pool))
+    scored = _ranked(mind, steps, objs, names, pool, taught, temper, read, ahead=False, tick=tick)
     if ahead and scored:
         first = names[0]
         chosen = [s.question for s in scored[:ahead]]
         chosen += [s.question for s in scored[ahead:] if s.question.object == first]
-        scored = _ranked(mind, steps, objs, names, chosen, taught, temper, read, ahead=True)
+        tick.total += len(chosen)
+        scored = _ranked(mind, steps, objs, names, chosen, taught, temper, read, ahead=True, tick=tick)
     return scored[:top]
+
+
+Progress = Callable[[int, int], None]  # told (done, total) as work goes on
+
+
+class _Ticker:
+    """Counts the values of information computed and tells ``progress``, if any."""
+
+    def __init__(self, progress: Progress | None, total: int) -> None:
+        self.progress, self.total, self.done = progress, total, 0
+
+    def __call__(self) -> None:
+        self.done += 1
+        if self.progress is not None:
+            self.progress(self.done, self.total)
 
 
 SAVES_NOTHING = 1e-9  # expected mistakes: a gain this small is a tie with no question (ranking's tolerance)
@@ -742,7 +760,8 @@ def worth_asking(gain: float, min_gain: float) -> bool:
 
 
 def _ranked(mind: Mind, steps: Sequence[str], objs: Sequence[int | str], names: Sequence[str],
-            pool: Sequence[Question], taught: bool, temper: float, read: bool, ahead: bool) -> list[Scored]:
+            pool: Sequence[Question], taught: bool, temper: float, read: bool, ahead: bool,
+            tick: Callable[[], None] | None = None) -> list[Scored]:
     """Every question of ``pool`` scored (see :func:`best_questions`), best first; the value now is
     computed once per horizon (with ``taught``, questions sharing one share it)."""
     now: dict[int, float] = {}
@@ -751,6 +770,8 @@ def _ranked(mind: Mind, steps: Sequence[str], objs: Sequence[int | str], names: 
         cut = list(objs[: horizon(q, names)] if taught else objs)
         scored.append(value_of_information(mind, q, steps, cut, now.get(len(cut)), temper, read, ahead))
         now[len(cut)] = scored[-1].before
+        if tick is not None:
+            tick()
     scored.sort(key=lambda s: (-round(s.gain, 9), s.question.sort_key(names)))
     return scored
 

@@ -475,6 +475,19 @@ def test_best_questions_are_ranked_and_ties_ordered() -> None:
     assert keys == sorted(keys)
 
 
+@pytest.mark.slow
+def test_progress_counts_every_value_of_information_and_changes_nothing() -> None:
+    mind = small_mind(1)
+    objects = list(range(len(mind.objects)))
+    told: list[tuple[int, int]] = []
+    ranked = best_questions(mind, STEPS, objects, top=50, ahead=2, progress=lambda d, t: told.append((d, t)))
+    assert [d for d, _ in told] == list(range(1, len(told) + 1))  # one report per value, in order
+    pool = len(candidates(mind, STEPS, objects))
+    assert told[0][1] == pool and told[-1][0] == told[-1][1] > pool  # the look-ahead's values added
+    quiet = best_questions(mind, STEPS, objects, top=50, ahead=2)
+    assert [(s.question, s.gain) for s in ranked] == [(s.question, s.gain) for s in quiet]
+
+
 def test_equal_gains_are_ordered_by_kind_then_task_order() -> None:
     names = ["o10", "o2", "o1"]
     qs = [Question("whose", "o1"), Question("may", "o1", "trash"), Question("may", "o2", "trash"),
