@@ -1,12 +1,13 @@
 """The only exceptions users see.
 
 Every user mistake is an :class:`OwnctlError` whose message names the bad value and lists the
-valid ones; the CLI prints it as one line on stderr and exits with ``exit_code``.
+valid ones (of more than :data:`MAX_LISTED` names, the closest and how to list them all); the CLI
+prints it as one line on stderr and exits with ``exit_code``.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable
+from collections.abc import Iterable, Sequence
 
 
 class OwnctlError(Exception):
@@ -28,9 +29,31 @@ class UnknownName(OwnctlError):
 
     def __init__(self, kind: str, name: str, known: Iterable[str]) -> None:
         known = sorted(set(known))
-        listing = ", ".join(known) if known else "(none yet)"
-        super().__init__(f"unknown {kind} {name!r}; known {kind}s: {listing}")
+        if len(known) <= MAX_LISTED:
+            listing = ", ".join(known) if known else "(none yet)"
+            super().__init__(f"unknown {kind} {name!r}; known {kind}s: {listing}")
+        else:  # a store of thousands of objects: the closest names, not a line of every name
+            close = closest(name, known)
+            nearest = f", the closest: {', '.join(close)}" if close else ""
+            how = f" (ownctl {kind} list lists them all)" if kind in LISTED_KINDS else ""
+            super().__init__(f"unknown {kind} {name!r}; {len(known):,} known {kind}s{nearest}{how}")
         self.valid = known
+
+
+#: Up to this many known names, an unknown name's error lists them all; beyond, the closest.
+MAX_LISTED = 20
+LISTED_KINDS = ("object", "agent", "area")  # the kinds ``ownctl KIND list`` lists
+
+
+def closest(name: str, known: Sequence[str], n: int = 5) -> list[str]:
+    """Up to ``n`` names of ``known`` most like ``name`` (difflib's ratio at least 0.6), best first;
+    on a large list only those of about its length that start with its first letter are compared."""
+    import difflib
+
+    pool = known
+    if len(known) > 2000 and name:
+        pool = [k for k in known if k[:1].lower() == name[:1].lower() and abs(len(k) - len(name)) <= 2]
+    return difflib.get_close_matches(name, pool, n=n, cutoff=0.6)
 
 
 class BadName(OwnctlError):

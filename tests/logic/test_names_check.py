@@ -95,3 +95,17 @@ def test_check_name_returns_a_name_it_accepts_unchanged(text: str) -> None:
         return
     assert name == composed(text) and is_name(name)
     assert check_name("object", name) == name
+
+
+def test_an_unknown_name_among_many_names_the_closest_not_every_one() -> None:
+    from ownctl.errors import MAX_LISTED, UnknownName
+
+    few = UnknownName("object", "cup", ["mug", "pen"])
+    assert few.message == "unknown object 'cup'; known objects: mug, pen" and few.valid == ["mug", "pen"]
+    many = [f"block{i}" for i in range(5000)]
+    error = UnknownName("object", "blok12", many)
+    assert error.valid == sorted(many)  # --json still lists every valid name
+    assert len(error.message) < 200 and "5,000 known objects" in error.message
+    assert "the closest: block12," in error.message and "ownctl object list" in error.message
+    assert "the closest" not in UnknownName("agent", "zzz", many).message
+    assert len(UnknownName("colour", "x", many[: MAX_LISTED + 1]).message) < 100
