@@ -27,7 +27,7 @@ from pathlib import Path
 from typing import Any
 
 from ownctl.app.context import AppContext
-from ownctl.errors import BadValue, OwnctlError
+from ownctl.errors import BadValue, OwnctlError, UnknownName
 from ownctl.humanize import plural
 from ownctl.world.model import World
 from ownctl.world.scenario import (
@@ -192,7 +192,7 @@ def _place(ctx: AppContext, expect: PlaceExpectation,
            start: dict[str, tuple[float, float, float] | None]) -> Checked:
     now = _positions(ctx)
     if expect.object not in now:
-        raise BadValue(f"unknown object {expect.object!r}; known objects: {', '.join(sorted(now))}", now)
+        raise UnknownName("object", expect.object, now)
     if expect.object not in start:
         raise BadValue(f"{expect.object!r} was not in the scenario's world when it was loaded")
     before, after = start[expect.object], now[expect.object]
