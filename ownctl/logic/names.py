@@ -99,7 +99,8 @@ def _one_script(text: str) -> bool:
 def is_name(text: str) -> bool:
     """True if ``text`` obeys the naming rule (reserved words included) and is in composed form."""
     return (
-        0 < len(text) <= MAX_NAME
+        isinstance(text, str)
+        and 0 < len(text) <= MAX_NAME
         and unicodedata.category(text[0])[0] == "L"
         and all(map(_char_ok, text))
         and composed(text) == text

@@ -16,7 +16,7 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 
 from ownctl.errors import RuleSyntaxError
-from ownctl.logic.names import RESERVED, is_name
+from ownctl.logic.names import RESERVED, composed, is_name
 from ownctl.logic.vocab import ACTIONS, PREDICATES
 
 ANY = "any"
@@ -230,8 +230,9 @@ def parse_literals(words: list[str], start: int, source: str) -> tuple[Literal, 
 
 
 def parse_norm(text: str) -> Norm:
-    """Parse ``forbid|allow ACTION [if LITERALS]``; errors point at the bad word and list valid ones."""
-    source = " ".join(w for w in _SPACE.split(text) if w)
+    """Parse ``forbid|allow ACTION [if LITERALS]``; errors point at the bad word and list valid ones.
+    Names are read in their composed form (docs/architecture.md, section 2)."""
+    source = " ".join(w for w in _SPACE.split(composed(text)) if w)
     words = source.split(" ") if source else []
     if not words:
         raise _fail(source, 0, "", "empty rule", SIGNS)

@@ -23,7 +23,7 @@ from dataclasses import dataclass
 from typing import Any
 
 from ownctl.errors import BadValue, OwnctlError
-from ownctl.logic.names import is_name
+from ownctl.logic.names import composed, is_name
 from ownctl.logic.rules import parse_norm
 from ownctl.logic.vocab import ACTIONS
 from ownctl.world.spec import check_table
@@ -140,6 +140,8 @@ def _text(source: str, where: str, key: str, value: Any) -> str:
 
 
 def _name(source: str, where: str, what: str, value: str) -> str:
+    if isinstance(value, str):
+        value = composed(value)
     if not is_name(value):
         raise BadValue(f"{source}: {where}: {value!r} is not a valid {what} name")
     return value
@@ -165,6 +167,7 @@ def parse_expectation(line: Any, source: str = "<scenario>", where: str = "expec
     text = line.strip()
 
     def name(what: str, value: str) -> str:
+        value = composed(value)
         if not is_name(value):
             raise _bad_expectation(source, where, line, f"{value!r} is not a valid {what} name")
         return value

@@ -215,3 +215,29 @@ def test_ownctl_db_alone_does_not_pick_the_store_but_db_does(tmp_path: Path, own
     assert ownctl.digest() == before
     result = invoke(CliRunner(), ["scenario", "play", path, "--db", ownctl.url, "-q"], None, env)
     assert result.exit_code == 0 and ownctl.json("claims", "list")[0]["object"] == "mug"
+
+
+def test_a_scenario_names_people_and_things_in_any_script_however_typed(tmp_path: Path) -> None:
+    """A world and its steps written with combining accents (docs/architecture.md, section 2)."""
+    path = tmp_path / "unicode.toml"
+    path.write_text("""
+name = "cocina"
+agents = ["Jose\\u0301", "\\u0414\\u0438\\u043c\\u0430"]
+
+[[objects]]
+name = "ta\\u0301za"
+color = "red"
+position = [0.3, 0.1, 0.0]
+
+[[steps]]
+say = "The ta\\u0301za is mine."
+as = "Jose\\u0301"
+expect = ["owner t\\u00e1za Jos\\u00e9 > 0.9", "owner ta\\u0301za \\u0414\\u0438\\u043c\\u0430 < 0.5"]
+
+[[steps]]
+say = "Don't throw away Jose\\u0301's things."
+as = "\\u0414\\u0438\\u043c\\u0430"
+expect = ["check trash ta\\u0301za = forbidden", "rule 'forbid trash if ownedBy Jose\\u0301'"]
+""", encoding="utf-8")
+    data = json.loads(play(str(path), "--json").stdout)
+    assert data["passed"] is True and data["expectations"] == {"total": 4, "passed": 4, "failed": 0}
