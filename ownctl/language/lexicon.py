@@ -103,6 +103,8 @@ KIN = frozenset({
 ASIDES = frozenset({
     "by the way", "btw", "fyi", "for the record", "for your information", "just saying", "you know",
     "i mean", "to be honest", "honestly", "in fact", "of course", "as you know", "mind you",
+    "i need it", "i still need it", "i need that", "i still need that", "i am using it",
+    "i am still using it", "i still use it",
 })
 
 #: Discourse markers that may open a sentence without changing what it says ("So, whose is it?").

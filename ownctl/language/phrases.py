@@ -40,6 +40,7 @@ _OWNER = rf"(?:mine|{_NAME}(?: 's)?)"
 _TAIL = re.compile(
     rf"(?P<hedge>{alternation(tuple(HEDGES))} )?(?P<neg>not )?"
     r"(?P<only>(?:only|all|solely|exclusively|just) (?:to )?)?"
+    r"(?:both )?"
     rf"(?P<owner>{_OWNER})"
     r"(?P<excl>(?: now| alone| only| exclusively| and (?:only )?(?P=owner)(?: alone)?)*)"
     rf"(?: and (?P<also>{_OWNER}))?"
@@ -227,6 +228,8 @@ def class_literals(phrase: str, r: Resolver) -> tuple[Literal, ...] | None:
 # -- connectives: "or" and "unless" ----------------------------------------------------------------
 
 _OR = re.compile(rf"(?:(?<= )|^)(?P<a>{_NAME}(?: 's)?) (?:or|nor) (?P<b>{_NAME}(?: 's)?)(?= |$)")
+#: "Jake's and Mia's cups" in a class phrase: the cups of either (one rule each), as "or" gives.
+_AND_OWNERS = re.compile(rf"(?:(?<= )|^)(?P<a>{_NAME} 's) and (?P<b>{_NAME} 's)(?= |$)")
 _SUBJECT = re.compile(r"(?:it|they|something|anything|an object|a thing|the object|the thing|that|"
                       r"this|these|those|things|stuff|an item|the item) ")
 _OBJECT_TAIL = re.compile(r" (?:it|them)$")
@@ -242,8 +245,9 @@ def condition_phrase(clause: str) -> str:
 
 
 def _or_alternatives(phrase: str, r: Resolver) -> list[tuple[Literal, ...]] | None:
-    """The alternatives of a class phrase with "A or B" between two words of one kind."""
-    m = _OR.search(phrase)
+    """The alternatives of a class phrase with "A or B" between two words of one kind (or "A's
+    and B's" between two owners)."""
+    m = _OR.search(phrase) or _AND_OWNERS.search(phrase)
     if m is None:
         lits = class_literals(phrase, r)
         return None if lits is None else [lits]

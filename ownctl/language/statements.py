@@ -188,6 +188,17 @@ def claim_owns(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     return None if found is None else tuple(_claims(r.obj(m["obj"]), found))
 
 
+@GRAMMAR.rule("claim", r"<THINK>neither (?P<a>i|me|<NAME>) nor (?P<b>i|me|<NAME>) (?:owns?|do|does) <OBJ>",
+              r"<THINK><OBJ> (?:belongs|belong) to neither (?P<a>me|<NAME>) nor (?P<b>me|<NAME>)")
+def claim_neither(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"Neither Jake nor Mia owns the can", "It belongs to neither me nor Xuan": not theirs."""
+    agents = [r.owner("me" if w in ("i", "me") else w) for w in (m["a"], m["b"])]
+    if agents[0] == agents[1] or {ANY, NOBODY} & set(agents):
+        return None
+    obj = r.obj(m["obj"])
+    return tuple(Claim(obj, a, negated=True) for a in agents)
+
+
 @GRAMMAR.rule("claim", rf"<THINK><OBJ> {_VERB} (?P<rest>.+?),? and so (?:is|are|does|do) (?P<also>.+)")
 def claim_and_so(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"The scarf is mine and so is the wallet": the same owners for both objects."""
@@ -499,6 +510,13 @@ def _subject_norm(sign: str, phrase: str, act: str, r: Resolver) -> tuple[Instru
         raise Decline(phrase)
     obj = r.obj(phrase)
     return (*_owner_claim(phrase, obj, r), Permission(r.action(act), obj, sign == "forbid"))
+
+
+@GRAMMAR.rule("norm",
+              rf"nothing (?P<rest>.+?) (?:should|must|can|may|could|is to|shall) (?:ever )?be {_PASSIVE}")
+def nothing_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"Nothing on the desk should be thrown away", "Nothing that's Jake's may be collected"."""
+    return _subject_norm("forbid", "anything " + m["rest"], m["act"], r)
 
 
 @GRAMMAR.rule("norm", rf"(?P<cls>.+?) (?:is|are) (?P<neg>not )?{_OK} (?:for you )?to <ACT>(?: {_IT})?",

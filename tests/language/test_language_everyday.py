@@ -399,3 +399,16 @@ def test_readings_of_a_typo_that_store_different_things_are_not_taken() -> None:
     assert understanding._corrected("Don't trash the zorb", [], either, CTX) is None
     one = understanding._corrected("Don't trash the zorb", [], {"zorb": ["hat", "zzz"]}, CTX)
     assert one is not None and one.texts() == ("forbid trash on hat",)
+
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("Nothing in the hall should be thrown away.", {"forbid trash if inArea hall"}),
+    ("Leave Bo's and Jake's clothing alone",
+     {"forbid pickUp if ownedBy bo and inCategory clothing",
+      "forbid pickUp if ownedBy jake and inCategory clothing"}),
+    ("The kettle belongs to both Bo and Casey.", {"claim kettle bo", "claim kettle casey"}),
+    ("Neither Bo nor I own the cap.", {"claim cap bo --not", "claim cap olga --not"}),
+    ("Please don't trash my hat, I still need it.", {"claim hat olga", "forbid trash on hat"}),
+])
+def test_nothing_both_neither_and_owners_joined_by_and(utterance: str, want: set[str]) -> None:
+    assert texts(utterance) == want
