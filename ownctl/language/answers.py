@@ -40,16 +40,21 @@ YES = ("yes", "yes you may", "you may", "yes you can", "you can", "sure", "go ah
        "certainly", "definitely", "indeed", "yes indeed", "correct", "that is correct", "right",
        "that is right", "true", "that is true", "it is true", "go on", "go for it", "please do",
        "by all means", "be my guest", "sure thing", "no problem", "that is fine", "it is ok", "that is ok",
-       "you are allowed", "you have my permission", "it is allowed", "yes it is", "it is", "yes it is true")
+       "you are allowed", "you have my permission", "it is allowed", "yes it is", "it is", "yes it is true",
+       "fine by me", "fine with me", "ok by me", "ok with me", "go right ahead", "help yourself", "why not",
+       "sure go ahead", "of course you may", "yes you are")
 NO = ("no", "no you may not", "you may not", "no you can not", "you can not", "do not", "no do not",
       "please do not", "no please do not", "nope", "no it does not", "it does not", "never",
       "no never", "no it does not hold", "it does not hold", "not at all", "no way", "of course not",
       "absolutely not", "certainly not", "definitely not", "not really", "by no means", "better not",
       "you must not", "you should not", "you are not allowed", "it is not allowed", "do not do that",
       "do not do it", "not true", "that is not true", "it is not true", "false", "wrong", "that is wrong",
-      "no it is not", "it is not", "not ok", "that is not ok", "it is not ok")
+      "no it is not", "it is not", "not ok", "that is not ok", "it is not ok",
+      "i would rather you did not", "i would prefer you did not", "i would prefer not", "rather not",
+      "i would rather not", "please do not do that", "no you are not", "no thank you")
 PARTLY = ("partly", "sometimes", "not always", "it depends", "in part", "only sometimes", "some of them",
-          "partially", "in some cases", "depends")
+          "partially", "in some cases", "depends", "mostly", "usually", "generally", "often", "mostly yes",
+          "mostly not", "not usually", "rarely", "seldom", "occasionally")
 DONT_KNOW = ("i do not know", "do not know", "no idea", "i have no idea", "not sure", "i am not sure",
              "dunno", "i dunno", "no clue", "i have no clue", "who knows", "i can not say", "can not say",
              "hard to say", "i can not tell", "i am not certain", "not certain", "i do not remember",
@@ -135,7 +140,9 @@ def _permission(utterance: str, action: str, obj: str, ctx: Context) -> tuple[In
 
 def _owners(utterance: str, obj: str, ctx: Context) -> tuple[Instruction, ...] | None:
     """The claims of an ownership statement about ``obj``, completed with "not theirs" for every
-    agent it does not name; None if the utterance states no ownership of ``obj``."""
+    agent it does not name, as sure as the statement ("Casey's, I think": the others' at 0.8); a
+    statement that only denies ("not mine") says nothing of the others; None if the utterance states
+    no ownership of ``obj``."""
     from ownctl.language.understand import understand
 
     try:
@@ -145,10 +152,11 @@ def _owners(utterance: str, obj: str, ctx: Context) -> tuple[Instruction, ...] |
     claims = [i for i in understood.instructions if isinstance(i, Claim) and i.object == obj]
     if not claims or len(claims) != len(understood.instructions):
         return None
-    named = {c.agent for c in claims}
-    rest = tuple(Claim(obj, a, negated=True) for a in sorted(ctx.agents - named))
     if all(c.negated for c in claims):
-        return tuple(claims) + rest  # "not Jake's": nothing about the others
+        return tuple(claims)  # "not Jake's": nothing about the others ("nobody's" names them all)
+    named = {c.agent for c in claims}
+    sure = min(c.p for c in claims if not c.negated)
+    rest = tuple(Claim(obj, a, sure, negated=True) for a in sorted(ctx.agents - named))
     return tuple(replace(c, exclusive=False) for c in claims) + rest
 
 

@@ -69,6 +69,25 @@ def test_whose_answers_name_every_owner() -> None:
     assert nobody is not None and all(c.negated for c in nobody)
 
 
+def test_a_whose_answer_that_only_denies_says_nothing_of_the_others() -> None:
+    assert answer_instructions("Not mine", WHOSE, CTX) == (Claim("mug", "jake", negated=True),)
+    assert answer_instructions("It's not Casey's", WHOSE, CTX) == (Claim("mug", "casey", negated=True),)
+
+
+def test_a_hedged_whose_answer_is_as_sure_of_the_others() -> None:
+    assert answer_instructions("Casey's, I think", WHOSE, CTX) == (
+        Claim("mug", "casey", 0.8), Claim("mug", "ann", 0.8, negated=True),
+        Claim("mug", "jake", 0.8, negated=True))
+
+
+@pytest.mark.parametrize(("words", "expected"), [
+    ("Fine by me", "yes"), ("I'd rather you didn't", "no"), ("Help yourself!", "yes"), ("Mostly", "partly"),
+    ("Usually, yes", None),
+])
+def test_more_everyday_replies(words: str, expected: str | None) -> None:
+    assert reading(words) == expected
+
+
 @pytest.mark.parametrize(("words", "question"), [("hello", MAY), ("maybe", RULE), ("yes", WHOSE),
                                                  ("throw away the book", MAY), ("pick it up", MAY),
                                                  ("yes... no", MAY), ("go ahead", WHOSE),
