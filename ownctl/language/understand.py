@@ -405,26 +405,34 @@ MAX_READINGS = 16
 
 
 def _corrected(utterance: str, readings: list[spelling.Reading], unclear: dict[str, list[str]],
-               ctx: Context) -> Understanding | None:
+               ctx: Context) -> tuple[Understanding | None, MissingContext | None]:
     """The utterance understood with its misspelt words read as the words they are near: each
     word near one word is read as it; a word near several is read as each in turn, and taken as
     read when every reading that parses stores the same ("Who ownes the book?": only "owns"
-    parses). None when no reading parses, or when readings that parse store different things."""
+    parses). None when no reading parses, or when readings that parse store different things;
+    beside it, when no reading parses, the one context every reading that parsed was missing
+    ("Who ownes this?" with no current object: which object is 'this'?), if there is one."""
     choices = [[spelling.Reading(w, c) for c in near] for w, near in unclear.items()]
     found: list[tuple[frozenset[str], Understanding]] = []
+    errors: dict[str, MissingContext] = {}
     for k, pick in enumerate(product(*choices)):
         if k == MAX_READINGS:
-            return None
+            return None, None
         tried = [*readings, *pick]
         try:
             got = _understand(spelling.apply(utterance, tried), ctx)
+        except MissingContext as err:  # understood, but for what "this" is: worth telling
+            errors.setdefault(err.message, err)
+            continue
         except OwnctlError:
             continue
         notes = " ".join(r.note() for r in tried)
         found.append((frozenset(got.texts()), replace(got, reply=f"{got.reply} {notes}".strip())))
-    if not found or len({texts for texts, _ in found}) > 1:
-        return None
-    return found[0][1]
+    if not found:
+        return None, next(iter(errors.values())) if len(errors) == 1 else None
+    if len({texts for texts, _ in found}) > 1:
+        return None, None
+    return found[0][1], None
 
 
 def understand(utterance: str, ctx: Context) -> Understanding:
@@ -447,9 +455,11 @@ def understand(utterance: str, ctx: Context) -> Understanding:
         first = err
     readings, unclear = spelling.corrections(normalize(utterance).split(), ctx)
     if readings or unclear:
-        got = _corrected(utterance, readings, unclear, ctx)
+        got, why = _corrected(utterance, readings, unclear, ctx)
         if got is not None:
             return got
+        if why is not None and isinstance(first, NotUnderstood):
+            raise why from None
     if unclear and isinstance(first, NotUnderstood):
         maybe = "; ".join(f"{w!r} could be {' or '.join(repr(c) for c in cs)}" for w, cs in unclear.items())
         raise NotUnderstood(utterance, "; ".join(filter(None, (first.detail, maybe)))) from None

@@ -396,9 +396,14 @@ def test_readings_of_a_typo_that_store_different_things_are_not_taken() -> None:
 
     understanding = sys.modules["ownctl.language.understand"]
     either = {"zorb": ["hat", "cap"]}  # near two objects: both readings parse, storing different things
-    assert understanding._corrected("Don't trash the zorb", [], either, CTX) is None
-    one = understanding._corrected("Don't trash the zorb", [], {"zorb": ["hat", "zzz"]}, CTX)
+    assert understanding._corrected("Don't trash the zorb", [], either, CTX) == (None, None)
+    one, _ = understanding._corrected("Don't trash the zorb", [], {"zorb": ["hat", "zzz"]}, CTX)
     assert one is not None and one.texts() == ("forbid trash on hat",)
+
+
+def test_a_typo_in_a_sentence_that_lacks_its_object_asks_for_the_object() -> None:
+    with pytest.raises(MissingContext, match="which object is 'this'"):
+        understand("Who ownes this?", CTX)  # every reading that parses needs a current object
 
 
 @pytest.mark.parametrize(("utterance", "want"), [
