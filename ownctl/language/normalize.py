@@ -96,9 +96,13 @@ def _drop_vocatives(text: str) -> str:
     return _TAIL_VOC.sub(" ", text)
 
 
+#: Punctuation (anything but word characters, combining marks, spaces, apostrophes and hyphens).
+_PUNCTUATION = re.compile(rf"[^\w\s'{marks()}-]|_(?![\w-])")
+
+
 def _strip_punctuation(text: str) -> str:
     """Punctuation to spaces; keep apostrophes and hyphens inside words; split plural possessives."""
-    text = re.sub(rf"[^\w\s'{marks()}-]|_(?![\w-])", " ", text)
+    text = _PUNCTUATION.sub(" ", text)
     text = re.sub(r"(\w)s'(?=\s|$)", r"\1s 's", text)
     return re.sub(r"(?<![\w])(?:-+|'(?!s\b))|['-]+(?![\w])", " ", text)
 

@@ -192,11 +192,15 @@ def claim_owns(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
               r"<THINK><OBJ> (?:belongs|belong) to neither (?P<a>me|<NAME>) nor (?P<b>me|<NAME>)")
 def claim_neither(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"Neither Jake nor Mia owns the can", "It belongs to neither me nor Xuan": not theirs."""
+    agents = _two_owners(m, r)
+    return None if agents is None else tuple(Claim(r.obj(m["obj"]), a, negated=True) for a in agents)
+
+
+def _two_owners(m: re.Match[str], r: Resolver) -> list[str] | None:
+    """The two agents named by groups ``a`` and ``b`` ("I"/"me": the speaker), or None unless they
+    are two different agents (not "someone", not "nobody")."""
     agents = [r.owner("me" if w in ("i", "me") else w) for w in (m["a"], m["b"])]
-    if agents[0] == agents[1] or {ANY, NOBODY} & set(agents):
-        return None
-    obj = r.obj(m["obj"])
-    return tuple(Claim(obj, a, negated=True) for a in agents)
+    return None if agents[0] == agents[1] or {ANY, NOBODY} & set(agents) else agents
 
 
 @GRAMMAR.rule("claim", rf"<THINK><OBJ> {_VERB} (?P<rest>.+?),? and so (?:is|are|does|do) (?P<also>.+)")
@@ -302,11 +306,8 @@ def claim_gift(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 def claim_shared(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"Jake and I share the bottle", "I share the lamp with Mia", "The bottle is shared by Jake and
     Casey": each of the two owns it (neither alone)."""
-    agents = [r.owner("me" if w in ("i", "me") else w) for w in (m["a"], m["b"])]
-    if agents[0] == agents[1] or {ANY, NOBODY} & set(agents):
-        return None
-    obj = r.obj(m["obj"])
-    return tuple(Claim(obj, a) for a in agents)
+    agents = _two_owners(m, r)
+    return None if agents is None else tuple(Claim(r.obj(m["obj"]), a) for a in agents)
 
 
 def _subjects(phrase: str, r: Resolver) -> tuple[list[str], bool] | None:

@@ -218,10 +218,11 @@ def _has_content(text: str, ctx: Context) -> bool:
     be a name: "that's Bob's")."""
     known = spelling.vocabulary()
     names = {n.lower() for n in (*ctx.agents, *ctx.objects, *ctx.colors, *ctx.areas, *ctx.categories)}
-    if normalize(text) in ASIDES:
+    words = normalize(text)
+    if words in ASIDES:
         return False
     return any(w in _CONTENT or w in names or w.removesuffix("s") in names or w not in known
-               for w in normalize(text).split())
+               for w in words.split())
 
 
 def _chunks(utterance: str) -> list[tuple[int, int]]:
