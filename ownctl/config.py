@@ -64,6 +64,8 @@ class PredictConfig:
     share_step: float = 0.25  # the borrowed recency slope is rounded to a multiple of this (logits)
     recalibrate_min: int = 6  # from this many claims, the logits are rescaled on their leave-one-out fit
     recalibrate_scale: float = 1.0  # prior std of that rescaling's slope (around 1) and intercept (around 0)
+    scales: tuple[float, ...] = (1.0, 0.1, 0.01)  # multipliers of C: how far percepts may move predictions
+    scale_bonus: float = 2.0  # log prior odds (nats) of the first scale over each other one
 
 
 @dataclass(frozen=True)

@@ -17,13 +17,14 @@ from __future__ import annotations
 from typing import TYPE_CHECKING
 
 from ownctl.app.context import AppContext, Done, use_case
-from ownctl.app.mindstore import changing, refit_focus
+from ownctl.app.mindstore import changing, refit_focus, refitting
 from ownctl.app.settings import probability
 from ownctl.errors import BadValue, OwnctlError
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
 from ownctl.logic.vocab import action as check_action
 
 if TYPE_CHECKING:
+    from ownctl.mind import Mind
     from ownctl.store.repo import Tx
 
 
@@ -52,9 +53,12 @@ def add_claim(
     with ctx.read() as tx:
         tx.things.object(obj), tx.world.agent(agent)  # unknown names are errors that list the known ones
         focus = refit_focus(tx, obj, [a.name for a in tx.world.agents()] if exclusive else [agent])
-    with changing(ctx, payload, actor=speaker, agents=focus) as (tx, mind):
+
+    def change(_: Tx, mind: Mind) -> tuple[float, float]:
         trust = probability("trust", mind.settings.trust)
-        stored = mind.claim(obj, agent, p, negated=negated, exclusive=exclusive, speaker=speaker)
+        return trust, mind.claim(obj, agent, p, negated=negated, exclusive=exclusive, speaker=speaker)
+
+    trust, stored = refitting(ctx, payload, change, actor=speaker, agents=focus)
     alone = " alone" if exclusive else ""
     return Done(
         f"noted: {obj} is {'not ' if negated else ''}owned by {agent}{alone} (stored p={stored:.3g})",

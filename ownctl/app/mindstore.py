@@ -20,10 +20,10 @@ refitted, and the next write stores the new priors and the version.
 
 from __future__ import annotations
 
-from collections.abc import Iterator, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from contextlib import contextmanager
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
 
@@ -31,7 +31,7 @@ from ownctl.app.settings import to_config
 from ownctl.learn.evidence import Vocabulary
 from ownctl.logic.rules import Rule, parse_norm, parse_rule
 from ownctl.logic.vocab import ACTIONS
-from ownctl.mind import SWITCHES, ClaimInfo, Given, Mind, RuleInfo, Switches
+from ownctl.mind import SWITCHES, ClaimInfo, Given, Mind, RuleInfo, Switches, WholeMindNeeded
 from ownctl.ownership.predict import PREDICTOR_VERSION
 from ownctl.world.model import Area, ObjectSpec
 
@@ -40,6 +40,12 @@ from ownctl.world.model import Area, ObjectSpec
 LENT = "predict.lent"
 #: The store key of the predictor version that wrote the stored priors (``PREDICTOR_VERSION``).
 VERSION = "predict.version"
+#: The store keys of :attr:`Mind.scale_evidence` (agent -> log evidence per scale) and
+#: :attr:`Mind.scale` (the scale the stored priors use), internal values like ``LENT``.
+EVIDENCE = "predict.evidence"
+SCALE = "predict.scale"
+
+T = TypeVar("T")
 
 if TYPE_CHECKING:
     from ownctl.app.context import AppContext
@@ -104,6 +110,8 @@ class _Base:
     rules: dict[str, list[tuple[str, str, Any]]]
     switches: dict[str, bool]
     lent: float | None  # the slope the borrowers' stored priors use (Mind.lent)
+    evidence: dict[str, tuple[float, ...]]  # Mind.scale_evidence
+    scale: int  # Mind.scale
     layout: int  # the Mind's layout when this was taken (same layout: same objects and agents)
     version: int | None = PREDICTOR_VERSION  # the predictor that wrote the stored priors (None: another)
 
@@ -162,7 +170,8 @@ class Stored:
             row=dict(mind.index), claims=mind.claims.copy(), claim_info=dict(mind.claim_info),
             prior=mind.predicted.copy(), source=mind.prior_source.copy(), posterior=post,
             perms={a: dict(g) for a, g in mind.perms.items()}, rules=_rules_state(mind),
-            switches=_switch_values(mind), lent=mind.lent, layout=mind.layout,
+            switches=_switch_values(mind), lent=mind.lent, evidence=dict(mind.scale_evidence),
+            scale=mind.scale, layout=mind.layout,
         )
 
     def _follow(self, edited: frozenset[str], respecified: frozenset[str],
@@ -182,6 +191,8 @@ class Stored:
         base.rules = _rules_state(mind)
         base.switches = _switch_values(mind)
         base.lent = mind.lent
+        base.evidence = dict(mind.scale_evidence)
+        base.scale = mind.scale
         base.areas = tuple(mind.areas)
 
     # -- saving ---------------------------------------------------------------------------------
@@ -211,6 +222,10 @@ class Stored:
                 tx.meta.set_setting(key, value or None)
         if mind.lent != base.lent:
             tx.meta.set_setting(LENT, mind.lent)
+        if mind.scale_evidence != base.evidence:
+            tx.meta.set_setting(EVIDENCE, {a: list(v) for a, v in mind.scale_evidence.items()} or None)
+        if mind.scale != base.scale:
+            tx.meta.set_setting(SCALE, mind.scale or None)
         if base.version != PREDICTOR_VERSION:
             tx.meta.set_setting(VERSION, PREDICTOR_VERSION)
             base.version = PREDICTOR_VERSION
@@ -478,6 +493,9 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
                 refit=None if focus is None else [names[a] for a in focus])
     lent = stored.get(LENT)
     mind.lent = None if lent is None else float(lent)
+    evidence = stored.get(EVIDENCE) or {}
+    mind.scale_evidence = {a: tuple(float(x) for x in v) for a, v in evidence.items() if a in mind.agents}
+    mind.scale = int(stored.get(SCALE) or 0)
     index = {r.id: i for i, r in enumerate(rows)}
     column = {a.id: j for j, a in enumerate(known)}
     stored_post = np.full(mind.claims.shape, np.nan)
@@ -572,6 +590,25 @@ def changing(ctx: AppContext, payload: dict[str, Any], actor: str | None = None,
         yield tx, stored.mind
         stored.save(tx)
         ctx.remember(tx, stored)
+
+
+def refitting(ctx: AppContext, payload: dict[str, Any], change: Callable[[Tx, Mind], T],
+               actor: str | None = None, agents: Sequence[str] | None = None) -> T:
+    """:func:`changing` for an instruction that refits only ``agents``' predictors (see
+    :func:`refit_focus`; None: every agent), running ``change`` in it and returning what it
+    returns. When the change moves the scale every predictor shares
+    (:class:`ownctl.mind.core.WholeMindNeeded`), nothing was written and it runs again on the
+    whole Mind, as a Mind kept in memory would refit every agent."""
+    if agents is not None:
+        try:
+            with changing(ctx, payload, actor=actor, agents=agents) as (tx, mind):
+                out = change(tx, mind)
+            return out
+        except WholeMindNeeded:
+            pass
+    with changing(ctx, payload, actor=actor) as (tx, mind):
+        out = change(tx, mind)
+    return out
 
 
 def reading(ctx: AppContext, tx: Tx, only: Sequence[str] | None = None, permitted: bool = False) -> Mind:

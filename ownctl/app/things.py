@@ -12,7 +12,7 @@ from collections.abc import Sequence
 from typing import Any
 
 from ownctl.app.context import AppContext, Done, use_case
-from ownctl.app.mindstore import changing, refit_focus
+from ownctl.app.mindstore import changing, refit_focus, refitting
 from ownctl.errors import BadValue
 from ownctl.humanize import iso
 from ownctl.logic.names import check_name
@@ -188,8 +188,8 @@ def touch(ctx: AppContext, obj: str, agent: str, at: float | None = None) -> Don
         tx.things.object(obj), tx.world.agent(agent)  # unknown names are errors listing the known ones
         focus = refit_focus(tx, obj, [agent])
     payload = {"op": "object.touch", "object": obj, "agent": agent, "time": time}
-    with changing(ctx, payload, agents=focus) as (_, mind):
-        mind.touch(obj, agent, time)  # recency is a percept of prediction
+    # recency is a percept of prediction
+    refitting(ctx, payload, lambda _, mind: mind.touch(obj, agent, time), agents=focus)
     return Done(f"{agent} touched {obj} at {iso(time)}", {"object": obj, "agent": agent, "time": time})
 
 

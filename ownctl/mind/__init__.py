@@ -12,7 +12,8 @@ from ownctl.mind.core import (
     NormResult,
     RuleInfo,
     Switches,
+    WholeMindNeeded,
 )
 
 __all__ = ["KEEP", "PERMISSION_CUT", "RESETS", "SWITCHES", "ClaimInfo", "Given", "Mind", "NormResult",
-           "RuleInfo", "Switches"]
+           "RuleInfo", "Switches", "WholeMindNeeded"]

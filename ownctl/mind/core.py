@@ -48,8 +48,10 @@ from ownctl.ownership.predict import (
     SharedRecency,
     borrows,
     calibrated_base_rate,
+    fit_scales,
     fit_shared_recency,
     owns_some,
+    pooled_scale,
 )
 from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
 
@@ -70,6 +72,21 @@ RESETS = ("perms", "rules", "claims", "all")
 ORIGINS = ("given", "learned", "allow")
 BASE_RATE = "base-rate"
 KEEP: Any = object()  # "leave this percept as it is" (set_percepts)
+
+
+@dataclass(frozen=True)
+class _Fit:
+    """One agent's predictor fitted at every scale, with its feature rows and borrowed term."""
+
+    models: list[KernelOwnershipModel]
+    X: np.ndarray
+    offset: np.ndarray | None
+
+
+class WholeMindNeeded(RuntimeError):
+    """A Mind that may refit only some agents' predictors (a partial load) met a change that moves
+    the scale every predictor shares (:func:`ownctl.ownership.predict.pooled_scale`): the
+    instruction must be carried out again on the whole Mind."""
 
 
 @dataclass
@@ -264,6 +281,11 @@ class Mind:
         self._lenders: list[int] | None = None  # the lenders' columns, during refresh
         # the borrowed slope every borrower's predictions use (None: nobody borrows); see _follow_lenders
         self.lent: float | None = None
+        # each agent's log evidence at each of settings.predict.scales, as of its last own refit,
+        # and the index of the scale every predictor uses (pooled_scale of them); see _follow_scale
+        self.scale_evidence: dict[str, tuple[float, ...]] = {}
+        self.scale = 0
+        self._rescore = False  # the agents changed: choose the scale again
         self._posterior: np.ndarray | None = None
         self._inferred: tuple[list[int], np.ndarray] | None = None
 
@@ -346,13 +368,40 @@ class Mind:
         try:
             if self._stale:
                 self._follow_lenders()
-            for agent in sorted(self._stale):
-                if agent in self.agents:
-                    self._predict(self.agents.index(agent))
+            fits = {a: self._fit(a) for a in sorted(self._stale) if a in self.agents}
+            if fits or self._rescore:
+                self._follow_scale(fits)
+            for agent, fit in fits.items():
+                self._predict(self.agents.index(agent), fit)
         finally:
             self._lending = None
             self._lenders = None
         self._stale.clear()
+        self._rescore = False
+
+    def _follow_scale(self, fits: dict[str, _Fit | None]) -> None:
+        """Take the refitted agents' evidence and choose the scale every predictor uses again
+        (:func:`pooled_scale`); when it moves, every agent is refitted at the new one (the others
+        keep the evidence of their last own refit, so the choice does not move again). A partial
+        Mind raises :class:`WholeMindNeeded` instead."""
+        cfg = self.settings.predict
+        if not self.switches.prediction:
+            return
+        for agent, fit in fits.items():
+            if fit is not None:
+                self.scale_evidence[agent] = tuple(float(m.evidence_) for m in fit.models)
+        none = (0.0,) * len(cfg.scales)
+        chosen = pooled_scale((self.scale_evidence.get(a, none) for a in self.agents), cfg)
+        if chosen == self.scale:
+            return
+        if self._refit is not None:
+            raise WholeMindNeeded(f"the predictors' shared scale moves from {cfg.scales[self.scale]:g} "
+                                  f"to {cfg.scales[chosen]:g}: every agent is refitted")
+        self.scale = chosen
+        for agent in self.agents:
+            if agent not in fits:
+                fits[agent] = self._fit(agent)
+                self._edited.add(agent)
 
     def _follow_lenders(self) -> None:
         """When something changed, whether the borrowers' predictions must follow the lenders: the
@@ -461,15 +510,23 @@ class Mind:
             self._lending[key] = shared
         return shared
 
-    def _predict(self, j: int) -> None:
+    def _fit(self, agent: str) -> _Fit | None:
+        """The agent's predictor fitted at every scale (None while prediction is off)."""
         if not self.switches.prediction:
-            return
-        cfg = self.settings.predict
-        X, known = self.features(self.agents[j])
+            return None
+        j = self._column(agent)
+        X, known = self.features(agent)
         own = self.claims[known, j]
-        offset = self.borrowed_term(self.agents[j], own, X[:, -1])
-        model = KernelOwnershipModel(cfg).fit(X[known], own, None if offset is None else offset[known])
-        self.predicted[:, j] = model.predict_proba(X, offset)
+        offset = self.borrowed_term(agent, own, X[:, -1])
+        models = fit_scales(X[known], own, None if offset is None else offset[known], self.settings.predict)
+        return _Fit(models, X, offset)
+
+    def _predict(self, j: int, fit: _Fit | None) -> None:
+        """Predict agent ``j``'s ownership of every object with its model at the chosen scale."""
+        if fit is None:
+            return
+        model = fit.models[self.scale]
+        self.predicted[:, j] = model.predict_proba(fit.X, fit.offset)
         self.prior_source[:, j] = model.source_
 
     def frame(self, own: np.ndarray | None = None) -> Frame:
@@ -561,6 +618,7 @@ class Mind:
         new._rule_posteriors = dict(self._rule_posteriors)
         new._stale = set(self._stale)
         new._edited, new._respecified = set(self._edited), set(self._respecified)
+        new.scale_evidence = dict(self.scale_evidence)
         return new
 
     def rule_posterior(self, action: str) -> RulePosterior:
@@ -923,6 +981,8 @@ class Mind:
                         if name in o.last_touch else o for o in self.objects]
         self._edited.discard(name)
         self._stale.discard(name)
+        self.scale_evidence.pop(name, None)
+        self._rescore = True
         self._reindex()
 
     def add_area(self, area: Area) -> None:

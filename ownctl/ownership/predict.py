@@ -43,6 +43,7 @@ milliseconds, unlike a general-purpose solver.
 
 from __future__ import annotations
 
+from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -52,10 +53,10 @@ from ownctl.config import PredictConfig
 MAX_NEWTON = 50
 TOLERANCE = 1e-10
 #: Raised whenever what the predictor computes from the same claims and percepts changes (2: the
-#: recalibration on claims left out). A store whose priors another version wrote refits them on
-#: its next load (ownctl/app/mindstore.py), so a store keeps meaning what a Mind told the same
-#: things would believe.
-PREDICTOR_VERSION = 2
+#: recalibration on claims left out; 3: the scale pooled over agents). A store whose priors
+#: another version wrote refits them on its next load (ownctl/app/mindstore.py), so a store keeps
+#: meaning what a Mind told the same things would believe.
+PREDICTOR_VERSION = 3
 
 
 def _sigmoid(z: np.ndarray) -> np.ndarray:
@@ -95,22 +96,32 @@ class KernelOwnershipModel:
         pseudo = 4.0
         return _off_half((float(np.sum(p)) + pseudo * self.cfg.base_rate) / (len(p) + pseudo))
 
-    def fit(self, X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None) -> KernelOwnershipModel:
+    def fit(self, X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None,
+            scale: float = 1.0, kernel: np.ndarray | None = None) -> KernelOwnershipModel:
         """Fit on feature rows ``X`` (n, d) and soft targets ``p`` (n,) in [0, 1]; returns self.
         ``offset`` (n,): a borrowed logit term per row (:meth:`SharedRecency.term`) added to the
-        model's own; pass the same rule's offset to :meth:`predict_proba`."""
+        model's own; pass the same rule's offset to :meth:`predict_proba`. ``scale`` multiplies
+        the prior variance of the kernel and linear parts (``C``): how far percepts may move a
+        prediction (:func:`fit_scales`). :attr:`evidence_` is the log marginal likelihood of the
+        claims under that prior (0 without claims). ``kernel``: the RBF kernel of ``X`` with itself,
+        when the caller has it."""
         X = np.asarray(X, dtype=float).reshape(len(p), -1) if len(p) else np.zeros((0, 0))
         p = np.clip(np.asarray(p, dtype=float).reshape(len(X)), 0.0, 1.0)
         self.base_ = self.prior_(p)
         self.n_claims_ = len(p)
         self.offset_ = offset is not None
+        self.scale_ = scale
+        self.evidence_ = 0.0
         self.trained_ = len(p) >= max(self.cfg.min_claims, 1)
         if not self.trained_:
             return self
         cfg = self.cfg
-        design, penalty, mean = _system(X, cfg)
+        K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
+        design, penalty, mean = _system(X, cfg, scale, K)
         shift = np.zeros(len(p)) if offset is None else np.asarray(offset, dtype=float).reshape(len(p))
         self.coef_ = _newton(design, p, penalty, mean, shift)
+        self.evidence_ = log_evidence(X, p, cfg, scale, design @ self.coef_ + shift,
+                                      _prior_term(self.coef_, penalty, mean), K)
         self.support_ = X
         self.rescale_ = (1.0, 0.0)
         if len(p) >= cfg.recalibrate_min:
@@ -207,16 +218,74 @@ def rounded(slope: float, step: float) -> float:
     return float(np.round(slope / step) * step) if step > 0 else slope
 
 
-def _system(X: np.ndarray, cfg: PredictConfig) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """The fit's design ``[K, X, 1]`` over the claimed rows ``X``, its penalty (RKHS norm and
-    ``|w|^2`` over ``C``, the intercept's prior precision) and the prior mean of the coefficients."""
+def fit_scales(X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None,
+               cfg: PredictConfig | None = None) -> list[KernelOwnershipModel]:
+    """One agent's model fitted at each of ``cfg.scales`` (their :attr:`evidence_` says how well
+    each prior explains the claims; :func:`pooled_scale` picks one for every agent)."""
+    cfg = cfg or PredictConfig()
+    X = np.asarray(X, dtype=float)
+    K = rbf_kernel(X, X, cfg.gamma) if len(p) else None
+    return [KernelOwnershipModel(cfg).fit(X, p, offset, scale, K) for scale in cfg.scales]
+
+
+def pooled_scale(evidence: Iterable[Sequence[float]], cfg: PredictConfig | None = None) -> int:
+    """The index into ``cfg.scales`` that every agent's predictor uses: the most probable scale
+    given every agent's claims, its log prior ``cfg.scale_bonus`` for the first (percepts predict
+    ownership, the paper's premise) and 0 for the others, plus the sum of the agents' log
+    evidence at each scale (one entry per scale and agent; an agent without claims adds 0). The
+    first of equals wins.
+
+    How far percepts predict ownership is a property of the household, not of one agent: a scale
+    chosen on one agent's few claims follows chance patterns, a scale chosen on all agents' claims
+    tells a world where position and recency say who owns what (the paper's) from one where they
+    say nothing (docs/architecture.md, section 5)."""
+    cfg = cfg or PredictConfig()
+    total = np.zeros(len(cfg.scales))
+    total[0] = cfg.scale_bonus
+    for row in evidence:
+        total += np.asarray(row, dtype=float)
+    return int(np.flatnonzero(total >= total.max() - 1e-9)[0])
+
+
+def log_evidence(X: np.ndarray, p: np.ndarray, cfg: PredictConfig, scale: float, f: np.ndarray,
+                 prior_term: float, kernel: np.ndarray | None = None) -> float:
+    """The Laplace approximation of log p(claims | scale) at the fit's logits ``f`` of the claimed
+    rows ``X``: the soft log-likelihood, minus the prior term ``prior_term`` (half the penalty at
+    the fit), minus half the log determinant of ``I + W^1/2 S W^1/2``, with ``S`` the prior
+    covariance of the logits (``scale C (K + X X') + intercept_scale^2``) and ``W`` the logistic
+    curvature at ``f`` (Rasmussen and Williams, Gaussian Processes for Machine Learning, 3.4.4).
+    ``kernel``: the RBF kernel of ``X`` with itself, when the caller has it."""
+    n = len(p)
+    K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
+    cov = scale * cfg.C * (K + X @ X.T) + cfg.intercept_scale**2
+    s = _sigmoid(f)
+    root = np.sqrt(s * (1.0 - s))
+    chol = np.linalg.cholesky(np.eye(n) + root[:, None] * cov * root[None, :])
+    return -_soft_loss(f, p) - prior_term - float(np.sum(np.log(np.diag(chol))))
+
+
+def _prior_term(theta: np.ndarray, penalty: np.ndarray, mean: np.ndarray) -> float:
+    diff = theta - mean
+    return float(0.5 * diff @ penalty @ diff)
+
+
+def _soft_loss(f: np.ndarray, p: np.ndarray) -> float:
+    """The soft cross-entropy of targets ``p`` under logits ``f``, summed."""
+    return float(np.sum(np.logaddexp(0.0, -f) * p + np.logaddexp(0.0, f) * (1.0 - p)))
+
+
+def _system(X: np.ndarray, cfg: PredictConfig, scale: float = 1.0,
+            kernel: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The fit's design ``[K, X, 1]`` over the claimed rows ``X`` (``kernel``: ``K``, when the
+    caller has it), its penalty (RKHS norm and ``|w|^2`` over ``scale * C``, the intercept's prior
+    precision) and the prior mean of the coefficients."""
     n, d = X.shape
-    K = rbf_kernel(X, X, cfg.gamma)
+    K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
     design = np.hstack([K, X, np.ones((n, 1))])
     m = design.shape[1]
     penalty = np.zeros((m, m))
-    penalty[:n, :n] = K / cfg.C
-    penalty[n : n + d, n : n + d] = np.eye(d) / cfg.C
+    penalty[:n, :n] = K / (scale * cfg.C)
+    penalty[n : n + d, n : n + d] = np.eye(d) / (scale * cfg.C)
     penalty[-1, -1] = 1.0 / cfg.intercept_scale**2
     mean = np.zeros(m)
     mean[-1] = _logit(cfg.base_rate)
@@ -265,10 +334,7 @@ def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.nda
     damped Newton steps."""
 
     def objective(theta: np.ndarray) -> float:
-        f = design @ theta + offset
-        nll = np.logaddexp(0.0, -f) * p + np.logaddexp(0.0, f) * (1.0 - p)
-        diff = theta - mean
-        return float(nll.sum() + 0.5 * diff @ penalty @ diff)
+        return _soft_loss(design @ theta + offset, p) + _prior_term(theta, penalty, mean)
 
     theta = mean.copy()
     current = objective(theta)

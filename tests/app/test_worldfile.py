@@ -70,7 +70,10 @@ def test_world_from_dict_validates_and_canonicalises() -> None:
         ({"objects": [{"name": "o", "position": [0, float("nan"), 0]}]}, BadValue, ["finite"]),
         ({"objects": [{"name": "o"}, {"name": "o"}]}, BadValue, ["listed twice"]),
         ({"objects": [{"name": "o", "size": 3}]}, BadValue, ["'size'", "categories"]),
-        ({"generator": {"kind": "mystery"}}, BadValue, ["w.toml", "[generator]", "paper-blocks"]),
+        ({"generator": {"kind": "mystery"}}, BadValue, ["w.toml", "[generator]", "paper-blocks, scattered"]),
+        ({"generator": {"kind": "scattered", "owner_age": 0}}, BadValue, ["owner_age", "(0, 1000000]"]),
+        ({"generator": {"kind": "scattered", "owner_age": True}}, BadValue, ["owner_age"]),
+        ({"generator": {"owner_age": 10}}, BadValue, ["'owner_age' is for kind 'scattered'"]),
     ],
 )
 def test_bad_world_files(patch: dict, error: type, words: list[str]) -> None:
@@ -79,6 +82,29 @@ def test_bad_world_files(patch: dict, error: type, words: list[str]) -> None:
         world_from_dict(data, "w.toml")
     for word in words:
         assert word in str(info.value)
+
+
+def test_a_scattered_world_says_nothing_of_owners_by_place_or_colour() -> None:
+    """Owners are drawn apart from everything else: over many objects, every agent's and nobody's
+    objects are spread alike (mean position and colour shares agree within sampling error), and
+    by default the owner touched them as long ago as anyone; with ``owner_age`` much more recently."""
+    data = {"generator": {"kind": "scattered", "objects": 4000}}
+    world = world_from_dict(data, "s.toml", np.random.default_rng(5))
+    assert world_from_dict(data, "s.toml", np.random.default_rng(5)) == world
+    owner = [next(iter(world.owners.get(o.name, {})), None) for o in world.objects]
+    xy = np.array([o.position[:2] for o in world.objects if o.position is not None])
+    for who in (*world.agents, None):
+        mine = np.array([w == who for w in owner])
+        assert 0.2 < mine.mean() < 0.3  # a quarter each: three agents and nobody
+        assert np.all(np.abs(xy[mine].mean(axis=0) - xy.mean(axis=0)) < 0.05)
+        reds = np.mean([o.color == "red" for o, m in zip(world.objects, mine, strict=True) if m])
+        assert 0.2 < reds < 0.3
+    mine_age = np.mean([o.last_touch[w] for o, w in zip(world.objects, owner, strict=True) if w])
+    assert 900 < mine_age < 1100
+    touched = world_from_dict({"generator": {"kind": "scattered", "objects": 400, "owner_age": 10}},
+                              "s.toml", np.random.default_rng(5))
+    owned = [(o, next(iter(touched.owners[o.name]))) for o in touched.objects if touched.owners.get(o.name)]
+    assert np.mean([o.last_touch[w] for o, w in owned]) < 20
 
 
 def test_generator_section_draws_the_paper_world() -> None:

@@ -118,6 +118,18 @@ def test_paper_world_file_equals_the_builtin_world() -> None:
         assert a.accuracy == b.accuracy and a.counts == b.counts
 
 
+def test_a_scattered_world_runs_table_2_and_is_not_the_paper_s() -> None:
+    """Table 2 on a world no percept predicts: few held-out objects are predicted far from how
+    often the agents own things (a quarter each), since no percept can back such a prediction."""
+    res = run("ownership", "--trials", "6", "--world", str(ROOT / "scenarios" / "scattered.toml"), "--json")
+    assert res.exit_code == 0, res.stderr
+    doc = json.loads(res.stdout)
+    assert doc["paper_comparable"] is False
+    bins = doc["calibration"][0]["reliability"]
+    far = sum(b["count"] for b in bins if b["hi"] <= 0.1 + 1e-9 or b["lo"] >= 0.6 - 1e-9)
+    assert far < 0.2 * sum(b["count"] for b in bins)
+
+
 @pytest.mark.slow
 def test_a_different_norm_set_runs_end_to_end() -> None:
     factory = app_experiment.load_world(DESK)

@@ -1,0 +1,85 @@
+"""Law: the scale every predictor shares moves the same in a store as in a Mind kept in memory.
+
+A claim about one agent loads only that agent's predictor when every agent owns something else
+(ownctl/app/mindstore.py, ``refit_focus``). The scale all predictors use is chosen on every
+agent's claims (architecture section 5): when a claim moves it, that partial load cannot refit
+the others, so the claim is carried out again on the whole Mind. On a scattered world (no
+percept says who owns what) whose claims move the scale while every agent owns something, the
+store's priors equal the in-memory Mind's after every claim, and the partial loads that met a
+move wrote nothing of their own.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from ownctl.app import instruct, mindstore, worldfile
+from ownctl.app.beliefs import induction_belief
+from ownctl.app.context import AppContext
+from ownctl.mind import Mind, WholeMindNeeded
+from ownctl.world.generator import scattered_world
+from ownctl.world.spec import to_toml, world_to_dict
+
+START = 10_000.0
+SEED = 9  # a world whose later claims move the scale three times while every agent owns something
+
+
+def stored_priors(db: str, now: float) -> np.ndarray:
+    ctx = AppContext(db, now=now)
+    try:
+        with ctx.read() as tx:
+            agents = {a.id: j for j, a in enumerate(tx.world.agents())}
+            order = {r.id: i for i, r in enumerate(tx.things.object_table())}
+            prior = np.full((len(order), len(agents)), np.nan)
+            for b in tx.beliefs.belief_table():
+                prior[order[b.object_id], agents[b.agent_id]] = induction_belief(b)[0]
+    finally:
+        ctx.close()
+    return prior
+
+
+def test_claims_that_move_the_shared_scale_give_the_store_the_mind_s_priors(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    world = scattered_world(np.random.default_rng(SEED), 8)
+    path = tmp_path / "w.toml"
+    path.write_text(to_toml(world_to_dict(world)), encoding="utf-8")
+    db = str(tmp_path / "s.db")
+    ctx = AppContext(db, now=START)
+    ctx.store(create=True)
+    worldfile.load(ctx, str(path))
+    ctx.close()
+    mind = Mind(world.agents, list(world.objects), sorted(world.areas, key=lambda a: a.name), now=START)
+    retried: list[str] = []
+    partial = mindstore.changing
+
+    def spying(*args, **kwargs):  # type: ignore[no-untyped-def]
+        try:
+            with partial(*args, **kwargs) as out:
+                yield out
+        except WholeMindNeeded:
+            retried.append(args[1]["object"])
+            raise
+
+    monkeypatch.setattr(mindstore, "changing", __import__("contextlib").contextmanager(spying))
+    truth = world.true_ownership()
+    now = START
+    moves = 0
+    for i, obj in enumerate(world.objects):
+        for j, agent in enumerate(world.agents):
+            now += 1.0
+            ctx = AppContext(db, now=now)
+            try:
+                instruct.add_claim(ctx, obj.name, agent, float(truth[i, j]))
+            finally:
+                ctx.close()
+            before = mind.scale
+            mind.at(now)
+            mind.claim(i, agent, float(truth[i, j]))
+            mind.refresh()
+            moves += mind.scale != before
+            np.testing.assert_allclose(stored_priors(db, now), mind.prior, rtol=0, atol=1e-12)
+    assert moves >= 2
+    assert retried, "no claim moved the scale through a partial load"
