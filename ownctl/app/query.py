@@ -20,13 +20,15 @@ if TYPE_CHECKING:
 
 
 def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str, Any]:
-    """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}]}``, likeliest
-    first; ``p`` and ``source`` are the decision belief. With ``coverage``, each owner row also has
+    """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}],
+    "percept_scale"}``, likeliest first; ``p`` and ``source`` are the decision belief;
+    ``percept_scale`` is :func:`percept_scale`. With ``coverage``, each owner row also has
     ``"conformal"``: its split-conformal set over {owns, does not own} (docs/asking.md, section 7),
     and ``"claims_needed"`` says how many claimed objects an agent needs before its sets can leave
     a label out."""
     with ctx.read() as tx:
-        data: dict[str, Any] = {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id)}
+        data: dict[str, Any] = {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id),
+                                "percept_scale": percept_scale(tx)}
         if coverage is not None:
             from ownctl.mind.conformal import check_coverage, claims_needed, prediction_sets
 
@@ -37,6 +39,16 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
             data["coverage"] = coverage
             data["claims_needed"] = claims_needed(coverage)
         return data
+
+
+def percept_scale(tx: Tx) -> float:
+    """How far percepts may move the stored predictions, as a fraction of the full reach: the
+    scale every agent's predictor uses, chosen on all agents' claims (docs/architecture.md,
+    section 5)."""
+    from ownctl.app.mindstore import SCALE
+    from ownctl.config import PredictConfig
+
+    return PredictConfig().scales[int(tx.meta.settings().get(SCALE) or 0)]
 
 
 def owner_rows(tx: Tx, object_id: int) -> list[dict[str, Any]]:

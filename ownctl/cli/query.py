@@ -78,6 +78,8 @@ def owners(
 
     if (obj is None) == (agent is None):
         raise typer.BadParameter("give either an OBJ or --agent AGENT")
+    if coverage is not None and agent is not None:
+        raise typer.BadParameter("--coverage applies to OBJ, not --agent")
     if agent is not None:
         rows = query.owned_by(app_ctx(ctx), agent, min_p)
         emit(
@@ -87,8 +89,6 @@ def owners(
             table(f"owned by {agent}", ["object", "p", "source"], [list(r.values()) for r in rows]),
         )
         return
-    if coverage is not None and agent is not None:
-        raise typer.BadParameter("--coverage applies to OBJ, not --agent")
     data = query.owners(app_ctx(ctx), obj, coverage)  # type: ignore[arg-type]
     columns = ["agent", "p", "source", "claim", "prior", "posterior"]
     cells = [
@@ -104,6 +104,11 @@ def owners(
             note = (f"{', '.join(few)}: fewer than {data['claims_needed']} claimed objects, too few for "
                     f"coverage {coverage:g}; their sets hold both labels unless claimed")
     shown = table(f"owners of {obj}", columns, cells)
+    reach = data["percept_scale"]
+    if reach < 1 and any(o["source"] == "prediction" for o in data["owners"]):
+        note = "\n".join(filter(None, [note, (
+            f"percepts move these predictions at {reach:.0%} of their full reach: the claims so far say that "
+            "position, colour and recency tell little of who owns what here")]))
 
     def human() -> None:
         shown()

@@ -4,9 +4,10 @@ from __future__ import annotations
 
 from pathlib import Path
 
+import numpy as np
 import pytest
 
-from tests.cli.conftest import SMALL_WORLD, Ownctl
+from tests.cli.conftest import SMALL_WORLD, Ownctl, from_template
 
 WORLD = SMALL_WORLD.replace('name = "three blocks"', 'name = "four blocks"') + """
 [[objects]]
@@ -229,3 +230,32 @@ def test_a_row_lists_the_most_probable_answers() -> None:
     assert _answers(answers) == ("owners 1 (0.50), owners 3 (0.30), owners 4 (0.10), owners 0 (0.05) "
                                  "(+2 less likely)")
     assert _answers(answers[:2]) == "owners 1 (0.50), owners 0 (0.05)"
+
+
+def test_owners_says_when_the_claims_show_that_percepts_tell_little(ownctl: Ownctl, tmp_path: Path) -> None:
+    """A scattered world (no percept predicts ownership): after exact claims about eight objects
+    the predictors' shared scale is below the full reach, and ``owners`` says so under its table
+    (and gives it in --json). A paper world keeps the full reach and says nothing."""
+    from ownctl.world.generator import paper_blocks_world, scattered_world
+    from ownctl.world.spec import to_toml, world_to_dict
+
+    paper = from_template(tmp_path / "paper.db", ownctl.path.read_bytes())
+    for store, draw, reach in ((ownctl, scattered_world, "of their full reach: the claims so far say"),
+                               (paper, paper_blocks_world, None)):
+        world = draw(np.random.default_rng(9))
+        path = tmp_path / f"{draw.__name__}.toml"
+        path.write_text(to_toml(world_to_dict(world)), encoding="utf-8")
+        store("world", "load", str(path))
+        truth = world.true_ownership()
+        lines = [f"claim {o.name} {a}" + ("" if truth[i, j] else " --not")
+                 for i, o in enumerate(world.objects[:8]) for j, a in enumerate(world.agents)]
+        store("batch", "-", input="\n".join(lines) + "\n")
+        last = world.objects[-1].name
+        data = store.json("owners", last)
+        shown = store("owners", last).stdout
+        if reach:
+            assert data["percept_scale"] < 1 and reach in shown
+        else:
+            assert data["percept_scale"] == 1 and "full reach" not in shown
+    result = ownctl("owners", "--agent", "agent1", "--coverage", "0.9", code=2)
+    assert "--coverage applies to OBJ" in result.stderr and result.stdout == ""
