@@ -12,7 +12,7 @@ from ownctl.app.beliefs import decision_belief
 from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import changing, load, rule_of
 from ownctl.app.settings import probability
-from ownctl.errors import OwnctlError
+from ownctl.errors import OwnctlError, UnknownName
 from ownctl.humanize import plural
 
 if TYPE_CHECKING:
@@ -27,7 +27,14 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
     and ``"claims_needed"`` says how many claimed objects an agent needs before its sets can leave
     a label out."""
     with ctx.read() as tx:
-        data: dict[str, Any] = {"object": obj, "owners": owner_rows(tx, tx.things.object(obj).id),
+        try:
+            object_id = tx.things.object(obj).id
+        except UnknownName as exc:
+            if any(a.name == obj for a in tx.world.agents()):
+                raise OwnctlError(f"{obj!r} is an agent, not an object; the objects it owns: ownctl owners "
+                                  f"--agent {obj}", exc.valid) from None
+            raise
+        data: dict[str, Any] = {"object": obj, "owners": owner_rows(tx, object_id),
                                 "percept_scale": percept_scale(tx)}
         if coverage is not None:
             from ownctl.mind.conformal import check_coverage, claims_needed, prediction_sets

@@ -259,3 +259,8 @@ def test_owners_says_when_the_claims_show_that_percepts_tell_little(ownctl: Ownc
             assert data["percept_scale"] == 1 and "full reach" not in shown
     result = ownctl("owners", "--agent", "agent1", "--coverage", "0.9", code=2)
     assert "--coverage applies to OBJ" in result.stderr and result.stdout == ""
+    before = ownctl.digest()
+    result = ownctl("owners", "agent1", code=1)  # an agent where an object belongs
+    assert result.stderr.strip().splitlines() == [
+        "ownctl: 'agent1' is an agent, not an object; the objects it owns: ownctl owners --agent agent1"]
+    assert ownctl.digest() == before
