@@ -118,6 +118,7 @@ def test_paper_world_file_equals_the_builtin_world() -> None:
         assert a.accuracy == b.accuracy and a.counts == b.counts
 
 
+@pytest.mark.slow
 def test_a_scattered_world_runs_table_2_and_is_not_the_paper_s() -> None:
     """Table 2 on a world no percept predicts: few held-out objects are predicted far from how
     often the agents own things (a quarter each), since no percept can back such a prediction."""
