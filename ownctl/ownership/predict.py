@@ -37,6 +37,13 @@ the agent owns things stays its own: the intercept keeps its prior on the base r
 claims the prediction is the base rate moved by the borrowed term alone (docs/architecture.md,
 section 5).
 
+**How far percepts reach.** ``C`` lets percepts move a prediction a long way, as they do in the
+paper's world. Where they say nothing of who owns what, a few claims then read as patterns that
+are not there. Each agent's model is fitted at every multiple of ``C`` in ``cfg.scales``
+(:func:`fit_scales`), its Laplace evidence (:func:`log_evidence`) says how well each explains the
+agent's claims, and every agent uses the scale most probable given all agents' claims
+(:func:`pooled_scale`; docs/architecture.md, section 5).
+
 Newton's method on these small problems (one row per claimed object) is exact and takes
 milliseconds, unlike a general-purpose solver.
 """
