@@ -495,7 +495,7 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     mind.lent = None if lent is None else float(lent)
     evidence = stored.get(EVIDENCE) or {}
     mind.scale_evidence = {a: tuple(float(x) for x in v) for a, v in evidence.items() if a in mind.agents}
-    mind.scale = int(stored.get(SCALE) or 0)
+    mind.scale = stored_scale(stored)
     index = {r.id: i for i, r in enumerate(rows)}
     column = {a.id: j for j, a in enumerate(known)}
     stored_post = np.full(mind.claims.shape, np.nan)
@@ -557,6 +557,12 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
         mind.refit_all()
         out.base.version = None
     return out
+
+
+def stored_scale(settings: dict[str, Any]) -> int:
+    """The index into ``PredictConfig.scales`` of the scale the stored priors use (:attr:`Mind.scale`),
+    from the store's settings."""
+    return int(settings.get(SCALE) or 0)
 
 
 def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:

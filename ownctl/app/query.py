@@ -10,8 +10,8 @@ from typing import TYPE_CHECKING, Any
 
 from ownctl.app.beliefs import decision_belief
 from ownctl.app.context import AppContext, Done, use_case
-from ownctl.app.mindstore import changing, load, rule_of
-from ownctl.app.settings import probability
+from ownctl.app.mindstore import changing, load, rule_of, stored_scale
+from ownctl.app.settings import probability, to_config
 from ownctl.errors import OwnctlError, UnknownName
 from ownctl.humanize import plural
 
@@ -52,10 +52,8 @@ def percept_scale(tx: Tx) -> float:
     """How far percepts may move the stored predictions, as a fraction of the full reach: the
     scale every agent's predictor uses, chosen on all agents' claims (docs/architecture.md,
     section 5)."""
-    from ownctl.app.mindstore import SCALE
-    from ownctl.config import PredictConfig
-
-    return PredictConfig().scales[int(tx.meta.settings().get(SCALE) or 0)]
+    settings = tx.meta.settings()
+    return to_config(settings).predict.scales[stored_scale(settings)]
 
 
 def owner_rows(tx: Tx, object_id: int) -> list[dict[str, Any]]:

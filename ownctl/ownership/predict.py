@@ -52,6 +52,7 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Sequence
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 
@@ -119,6 +120,8 @@ class KernelOwnershipModel:
         self.offset_ = offset is not None
         self.scale_ = scale
         self.evidence_ = 0.0
+        self.recalibration_: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] | None = None
+        self.__dict__.pop("rescale_", None)  # a previous fit's rescaling
         self.trained_ = len(p) >= max(self.cfg.min_claims, 1)
         if not self.trained_:
             return self
@@ -130,11 +133,19 @@ class KernelOwnershipModel:
         self.evidence_ = log_evidence(X, p, cfg, scale, design @ self.coef_ + shift,
                                       _prior_term(self.coef_, penalty, mean), K)
         self.support_ = X
-        self.rescale_ = (1.0, 0.0)
         if len(p) >= cfg.recalibrate_min:
-            self.rescale_ = rescaling(loo_logits(design, p, penalty, self.coef_, shift), p,
-                                      cfg.recalibrate_scale)
+            self.recalibration_ = (design, p, penalty, shift)
         return self
+
+    @cached_property
+    def rescale_(self) -> tuple[float, float]:
+        """``(a, b)``, the rescaling of the fitted logits on the claims left out (:func:`rescaling`),
+        or (1, 0) below ``recalibrate_min`` claims. Computed when first needed: of the models
+        :func:`fit_scales` fits, only the one the predictors use predicts."""
+        if self.recalibration_ is None:
+            return 1.0, 0.0
+        design, p, penalty, shift = self.recalibration_
+        return rescaling(loo_logits(design, p, penalty, self.coef_, shift), p, self.cfg.recalibrate_scale)
 
     def decision_function(self, X: np.ndarray, offset: np.ndarray | None = None) -> np.ndarray:
         """The logit for each row of ``X`` (n,): ``a (f(x) + offset) + b``, with ``offset`` (n,) for a

@@ -76,9 +76,7 @@ def paper_blocks_world(
     if not 0 <= home_cluster <= k:
         raise BadValue(f"home_cluster must be in [0, {k}] (0: the unowned objects), got {home_cluster}")
     centres[0], centres[home_cluster] = centres[home_cluster], centres[0]
-    objects: list[ObjectSpec] = []
-    owners: dict[str, dict[str, float]] = {}
-    names = np.array(agents, dtype=object)
+    blocks = []
     for i in range(n_objects):
         cluster = i % (k + 1)
         r = rng.uniform(0.0, CLUSTER_RADIUS)
@@ -86,13 +84,26 @@ def paper_blocks_world(
         x, y = centres[cluster] + r * np.array([np.cos(theta), np.sin(theta)])
         color = PAPER_COLORS[int(rng.integers(len(PAPER_COLORS)))]
         owner = agents[cluster - 1] if cluster > 0 else None
-        # one draw per agent, in agent order: exponential(scale) is scale * standard_exponential()
-        scales = np.where(names == owner, MEAN_AGE_OWNER, MEAN_AGE_OTHER)
-        ages = dict(zip(agents, (scales * rng.standard_exponential(k)).tolist(), strict=True))
-        name = f"{prefix}{i + 1}"
-        objects.append(ObjectSpec(name, color, (float(x), float(y), 0.0), frozenset({"block"}), ages))
-        owners[name] = {owner: 1.0} if owner else {}
-    return World("paper blocks world", tuple(agents), tuple(objects), PAPER_AREAS, tuple(norms), owners)
+        xy = (float(x), float(y))
+        blocks.append(_block(rng, f"{prefix}{i + 1}", xy, color, owner, agents, MEAN_AGE_OWNER))
+    return _world("paper blocks world", agents, norms, blocks)
+
+
+def _block(rng: np.random.Generator, name: str, xy: tuple[float, float], color: str, owner: str | None,
+           agents: tuple[str, ...], owner_age: float) -> tuple[ObjectSpec, dict[str, float]]:
+    """One block and its true owners: every agent last touched it an exponential time ago, of mean
+    ``owner_age`` seconds for its owner and ``MEAN_AGE_OTHER`` for everyone else (one draw per
+    agent, in agent order: exponential(scale) is scale * standard_exponential())."""
+    scales = np.where(np.array(agents, dtype=object) == owner, owner_age, MEAN_AGE_OTHER)
+    ages = dict(zip(agents, (scales * rng.standard_exponential(len(agents))).tolist(), strict=True))
+    return ObjectSpec(name, color, (*xy, 0.0), frozenset({"block"}), ages), ({owner: 1.0} if owner else {})
+
+
+def _world(name: str, agents: tuple[str, ...], norms: tuple[str, ...],
+           blocks: list[tuple[ObjectSpec, dict[str, float]]]) -> World:
+    """The world of ``blocks`` (each with its true owners) on the paper's areas."""
+    owners = {spec.name: own for spec, own in blocks}
+    return World(name, tuple(agents), tuple(spec for spec, _ in blocks), PAPER_AREAS, tuple(norms), owners)
 
 
 def scattered_world(
@@ -111,20 +122,14 @@ def scattered_world(
     if not agents or n_objects < 0:
         raise BadValue(f"a scattered world needs at least one agent and a non-negative object count, "
                        f"got {len(agents)} agents and {n_objects} objects")
-    objects: list[ObjectSpec] = []
-    owners: dict[str, dict[str, float]] = {}
-    names = np.array(agents, dtype=object)
+    blocks = []
     for i in range(n_objects):
         x, y = rng.uniform(*SCATTER_X), rng.uniform(*SCATTER_Y)
         color = PAPER_COLORS[int(rng.integers(len(PAPER_COLORS)))]
         pick = int(rng.integers(len(agents) + 1))
         owner = agents[pick] if pick < len(agents) else None
-        scales = np.where(names == owner, owner_age, MEAN_AGE_OTHER)
-        ages = dict(zip(agents, (scales * rng.standard_exponential(len(agents))).tolist(), strict=True))
-        name = f"{prefix}{i + 1}"
-        objects.append(ObjectSpec(name, color, (float(x), float(y), 0.0), frozenset({"block"}), ages))
-        owners[name] = {owner: 1.0} if owner else {}
-    return World("scattered world", tuple(agents), tuple(objects), PAPER_AREAS, tuple(norms), owners)
+        blocks.append(_block(rng, f"{prefix}{i + 1}", (float(x), float(y)), color, owner, agents, owner_age))
+    return _world("scattered world", agents, norms, blocks)
 
 
 def generate(spec: Mapping[str, Any], rng: np.random.Generator, agents: tuple[str, ...] = ()) -> World:
