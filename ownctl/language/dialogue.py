@@ -33,13 +33,16 @@ _TASK_OPENING = r"(?:(?:can|could|would|will) you |go |go and |go ahead and |now
                 r"i want you to |you should |you can )?"
 _ALL = (
     r"(?:everything|it all|all of it|all of this|all this|all that|"
+    r"(?:every|each)(?: single)? (?:thing|object|block|item|cube|one)|"
     r"all(?: of)?(?: the| this| that| these| those)?"
     r"(?: (?:objects|blocks|things|stuff|items|cubes|junk|mess|rubbish|garbage|trash|litter))?)"
     r"(?: up| away| out| off)?"
 )
 _PLACE = r"(?: (?:off |up )?(?:the|this|your|my) (?:table|workspace|desk|work area|surface|area)" \
          r"(?: (?:into|in) the (?:trash|bin))?)?"
-_TASK_END = r"(?: (?:now|for me|right now|please))?"
+#: "... you are allowed to", "... you may": a task takes only what it may anyway.
+_MAY = rf"(?: (?:that |which )?you (?:are (?:allowed|permitted|able) to|may|can)(?: {actions_regex()})?)?"
+_TASK_END = rf"{_MAY}(?: (?:now|for me|right now|please))?"
 _QUESTION_LEAD = (r"(?:(?:do you know|can you tell me|could you tell me|tell me|i wonder|i want to know|"
                   r"(?:may|can|could) i ask(?: you)?|i would like to know|any idea) )?")
 _GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"

@@ -41,7 +41,8 @@ FRAGMENTS: dict[str, str] = {
     "FORBID": r"(?:do not|never|you (?:can|could|may|must|should|shall) not|you (?:must|should) never|"
               r"i would (?:rather|prefer(?: it if)?) you did not|i would prefer you not to|"
               r"you had better not|you better not|please do not|i do not want you ever to|you are never to|"
-              r"you are not (?:allowed|permitted|supposed) to|you are forbidden to|i do not want you to|"
+              r"you (?:are|were) not (?:allowed|permitted|supposed) to|you are forbidden to|"
+              r"i do not want you to|"
               r"i forbid you to|do not you dare) ",
     # a permission ("you can", "it's ok to", "feel free to", ...) followed by a space
     "ALLOW": r"(?:you (?:can|may|are allowed to|are permitted to|are free to|have permission to)"

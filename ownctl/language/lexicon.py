@@ -90,6 +90,16 @@ HEDGES: dict[str, float] = {
     "fairly sure": 0.8, "i am fairly sure": 0.8, "quite sure": 0.8, "i am quite sure": 0.8,
     "almost certain": 0.8, "i am almost certain": 0.8, "most likely": 0.8, "possibly": 0.6,
 }
+#: How sure a degree word makes "sure", "certain" or "confident" ("pretty certain": 0.8), with or
+#: without "I am" before it; the table above keeps the phrases that are not of this form.
+_DEGREES = {"pretty": 0.8, "fairly": 0.8, "quite": 0.8, "reasonably": 0.8, "almost": 0.8,
+            "absolutely": 1.0, "completely": 1.0, "totally": 1.0, "very": 1.0, "": 1.0}
+HEDGES.update({
+    f"{lead}{degree} {word}".replace("  ", " ").strip(): p
+    for degree, p in _DEGREES.items() for word in ("sure", "certain", "confident")
+    for lead in ("", "i am ")
+    if degree or lead
+})
 
 #: Who someone is to the speaker, said before their name ("my sister Mia": Mia).
 KIN = frozenset({
@@ -178,6 +188,12 @@ def _inflected(form: str) -> dict[str, str]:
         out[" ".join(filter(None, (inflect(first, form), rest)))] = act
     return out
 
+
+#: An action phrase's past participle -> the phrase ("thrown away" -> "throw away").
+BASE_OF_PARTICIPLE: dict[str, str] = {
+    " ".join(filter(None, (inflect(first, "en"), rest))): phrase
+    for phrase in ACTION_PHRASES for first, _, rest in [phrase.partition(" ")] if rest != "me"
+}
 
 #: "throwing away" -> trash ("stop throwing away my things").
 GERUNDS: dict[str, str] = _inflected("ing")

@@ -13,7 +13,13 @@ contractions, vocatives ("No Baxter, ...") or "please". Steps, in order:
 5. fillers ("please", "um", "just") go;
 6. a phrasal verb's particle is moved before its object ("throw this wallet away" -> "throw away
    this wallet"), so each action phrase is one contiguous string, and putting something in the bin
-   is throwing it away ("chuck it in the bin" -> "throw away it").
+   is throwing it away ("chuck it in the bin" -> "throw away it");
+7. a reproach for what was done forbids doing it ("you shouldn't have picked that up" -> "do not
+   pick up that").
+
+Some phrases are said in the words the grammar knows: "Jake's the owner" -> "jake is the owner",
+"I'm the one who owns" -> "i own", "belonging to" -> "owned by", "did you refuse to" -> "did you
+not".
 
 Spaces are collapsed before the rewrites, so punctuation inside a phrase ("never, ever") does not
 break it.
@@ -25,6 +31,7 @@ import re
 from functools import lru_cache
 
 from ownctl.language.lexicon import (
+    BASE_OF_PARTICIPLE,
     BIN_VERBS,
     BIN_WORDS,
     FILLERS,
@@ -67,6 +74,11 @@ REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
         (r"'ve\b", " have"),
         (r"\bi'd\b", "i would"),
         (r"'s\b", " 's"),
+        (r"\b([\w-]+) 's (?=the (?:owner|owners|one|person|people)\b)", r"\1 is "),
+        (r"\bi am the (?:one|person) (?:who|that) owns?\b", "i own"),
+        (r"\b(?:is|are) the (?:one|ones|person|people) (?:who|that) owns?\b", "owns"),
+        (r"\bbelonging to\b", "owned by"),
+        (r"\b(did|do|does|would|will|are|were) you (?:refuse|refusing) to\b", r"\1 you not"),
         (r"\b(anybody)\b", "anyone"),
         (r"\bsomebody\b", "someone"),
         (r"\beverybody\b", "everyone"),
@@ -120,6 +132,17 @@ def _move_particles(text: str) -> str:
     return _PARTICLE.sub(lambda m: f"{m.group(1)} {m.group(3)} {m.group(2)}", text)
 
 
+_UNDONE = re.compile(
+    rf"\byou (?:should|must|ought to) (?:not|never) have ({alternation(tuple(BASE_OF_PARTICIPLE))})"
+)
+
+
+def _undone(text: str) -> str:
+    """``you should not have picked up that`` -> ``do not pick up that``: a reproach for what was
+    done forbids doing it."""
+    return _UNDONE.sub(lambda m: f"do not {BASE_OF_PARTICIPLE[m.group(1)]}", text)
+
+
 @lru_cache(maxsize=4096)
 def normalize(utterance: str) -> str:
     """The canonical word string of an utterance (lower case, single spaces, no punctuation)."""
@@ -128,4 +151,4 @@ def normalize(utterance: str) -> str:
     for pattern, repl in REWRITES:
         text = pattern.sub(repl, text)
     text = " ".join(w for w in text.split() if w not in FILLERS)
-    return " ".join(_move_particles(text).split())
+    return " ".join(_undone(_move_particles(text)).split())

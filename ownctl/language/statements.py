@@ -18,11 +18,20 @@ from __future__ import annotations
 import re
 from itertools import product
 
-from ownctl.errors import RuleSyntaxError
+from ownctl.errors import OwnctlError, RuleSyntaxError
 from ownctl.language.context import NotUnderstood
 from ownctl.language.grammar import FRAGMENTS, Grammar, group
 from ownctl.language.instructions import Claim, Instruction, NormInstruction, Permission, Skip
-from ownctl.language.lexicon import DEICTIC, GERUNDS, NOT_NOUNS, PASSIVES, actions_regex, hedge_of
+from ownctl.language.lexicon import (
+    BIN_WORDS,
+    DEICTIC,
+    GERUNDS,
+    NOT_NOUNS,
+    PASSIVES,
+    actions_regex,
+    alternation,
+    hedge_of,
+)
 from ownctl.language.phrases import Owned, class_alternatives, condition_phrase, owners
 from ownctl.language.resolve import NOBODY, Decline, Resolver, split_determiner
 from ownctl.logic.rules import ANY, Literal, Norm, Rule
@@ -43,16 +52,39 @@ _STAY = (r"(?:(?:must|should|has to|have to|needs to|need to|is to|are to) )?(?:
 _GERUND = rf"(?P<act>{actions_regex(forms=GERUNDS)})"
 _PASSIVE = rf"(?P<act>{actions_regex(forms=PASSIVES)})"
 _OK = r"(?:ok|fine|allowed|safe|alright|permitted|free)"
+#: "in the bin", "into the trash": where thrown-away things go
+_IN_BIN = rf"(?:in|into|in to) (?:the |a )?{alternation(BIN_WORDS)}"
 _AND_NOR = re.compile(r" (?:and|nor) ")
 _PROHIBITION = re.compile(FRAGMENTS["FORBID"])
 #: A class or subject phrase longer than this is no phrase (the rule declines at once).
 MAX_PHRASE_WORDS = 14
 
 
-def _owned(m: re.Match[str], r: Resolver) -> list[Owned] | None:
-    """The owner phrase after the claim verb, with the verb's negation and any opening hedge."""
+_POSSESSED = re.compile(r"(?P<neg>not )?(?P<who>my|his|her|their|\S+ 's) (?P<noun>.+)")
+_POSSESSIVE_OF = {"my": "mine", "her": "hers", "their": "theirs"}
+
+
+def _named_again(rest: str, m: re.Match[str], r: Resolver) -> str | None:
+    """The owner phrase of ``rest`` when it names the match's object again ("it's Jake's bottle"
+    of the bottle: "Jake's"), or None."""
+    said = _POSSESSED.fullmatch(rest)
+    if said is None or said["noun"].split()[-1] in NOT_NOUNS:
+        return None
+    try:
+        same = r.obj(said["noun"]) == r.obj(group(m, "obj") or "that")
+    except (OwnctlError, Decline):
+        return None
+    return (said["neg"] or "") + _POSSESSIVE_OF.get(said["who"], said["who"]) if same else None
+
+
+def _owned(m: re.Match[str], r: Resolver, again: bool = False) -> list[Owned] | None:
+    """The owner phrase after the claim verb, with the verb's negation and any opening hedge;
+    with ``again``, the phrase may name the object once more ("it's Jake's mug")."""
     verb = group(m, "verb") or "is"
-    found = owners(m["rest"], verb in ("is", "are", "'s"), "not" in verb.split(), r)
+    possessive, negated = verb in ("is", "are", "'s"), "not" in verb.split()
+    found = owners(m["rest"], possessive, negated, r)
+    if found is None and again and possessive and (bare := _named_again(m["rest"], m, r)) is not None:
+        found = owners(bare, possessive, negated, r)
     if found is None:
         return None
     cap = hedge_of((group(m, "think") or "").removesuffix(" that ").strip() or None)
@@ -99,8 +131,8 @@ def _reprimand(obj: str, found: list[Owned], action: str | None, r: Resolver) ->
     rf"(?:because |since |as )?(?:it|that|this|that one|this one) {_VERB} (?P<rest>.+)",
 )
 def reprimand_claim(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"No, that's mine!", "Don't, that's Casey's!", "Don't throw that away, it's Jake's"."""
-    found = _owned(m, r)
+    """"No, that's mine!", "Don't, that's Casey's!", "Don't throw that away, it's Jake's (mug)"."""
+    found = _owned(m, r, again=True)
     if not found or found[0].negated:
         return None
     obj = r.obj(m["obj"])
@@ -122,12 +154,12 @@ def reprimand_leave(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | 
     """"Put the book back, that's Mia's!" (stops the robot if it is acting; without a reason, only
     that and "do not pick it up"), "Put that down, it's Mia's" (without a reason, "put that down"
     asks to put it down), "Leave the mug alone, it's Jake's" (a prohibition with its reason: the
-    claim and the owner's norm too, as a reprimand)."""
+    claim and the owner's norm too, as a reprimand; "it's Mia's scarf" is such a reason too)."""
     obj = r.obj(m["obj"])
     action = r.action("touch")
     if group(m, "rest") is None:
         return (*([Skip(obj)] if _acting(r) else []), Permission(action, obj, True))
-    found = _owned(m, r)
+    found = _owned(m, r, again=True)
     if not found or found[0].negated:
         return None
     return _reprimand(obj, found, action, r)
@@ -136,16 +168,20 @@ def reprimand_leave(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | 
 @GRAMMAR.rule(
     "reprimand",
     r"<REPRIMAND>(?P<obj>this|that|it)(?: one)? is (?P<who>my|<NAME> 's) (?P<noun><NAME>)",
+    r"(?:<REPRIMAND>)?(?P<obj>this|that|it)(?: one)? is (?P<who>my|<NAME> 's) (?P<noun><NAME>) "
+    rf"(?:that |which )?you are {_GERUND}",
 )
 def reprimand_my_noun(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"Hey, that's my scarf!" while the robot handles it."""
+    """"Hey, that's my scarf!" while the robot handles it; "That's my phone you're throwing
+    away!" (the action said)."""
     if m["noun"] in NOT_NOUNS:
         return None
     found = owners("mine" if m["who"] == "my" else m["who"], True, False, r)
     if not found:
         return None
     obj = r.obj(m["noun"]) if r.is_object(m["noun"]) else r.about(m["obj"])
-    return _reprimand(obj, found, r.ctx.action and r.current_action(), r)
+    named = group(m, "act")
+    return _reprimand(obj, found, r.action(named) if named else (r.ctx.action and r.current_action()), r)
 
 
 @GRAMMAR.rule("reprimand", rf"{_STOP}(?: {_STOP})*", "<FORBID><DO>")
@@ -360,11 +396,12 @@ def claim_not(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     return None if found is None else tuple(_claims(r.about(), found))
 
 
-@GRAMMAR.rule("claim", r"<OBJ>")
+@GRAMMAR.rule("claim", r"<OBJ>(?: (?:over )?(?:there|here))?")
 def topic(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"The scarf?": names what the next sentence is about (nothing to store)."""
-    phrase = m["obj"]
-    if phrase.split()[0] in ("this", "that", "it") or not r.is_object(phrase.split()[-1]):
+    """"The scarf?", "That phone over there?": names what the next sentence is about (nothing to
+    store); a bare "this" or "that one" names nothing new."""
+    phrase = re.sub(r"(?: over)? (?:there|here)$", "", m["obj"])
+    if phrase in DEICTIC or phrase.split()[0] == "it" or not r.is_object(phrase.split()[-1]):
         return None
     r.topic = r.obj(phrase)
     return ()
@@ -514,19 +551,23 @@ def _subject_norm(sign: str, phrase: str, act: str, r: Resolver) -> tuple[Instru
 
 
 @GRAMMAR.rule("norm",
-              rf"nothing (?P<rest>.+?) (?:should|must|can|may|could|is to|shall) (?:ever )?be {_PASSIVE}")
+              rf"nothing (?P<rest>.+?) (?:should|must|can|may|could|is to|shall) (?:ever )?be {_PASSIVE}",
+              rf"nothing (?P<rest>.+?) (?:(?:should|must|can|may|could|shall) (?:ever )?go|goes|ever goes) "
+              rf"{_IN_BIN}")
 def nothing_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"Nothing on the desk should be thrown away", "Nothing that's Jake's may be collected"."""
-    return _subject_norm("forbid", "anything " + m["rest"], m["act"], r)
+    """"Nothing on the desk should be thrown away", "Nothing that's Jake's may be collected",
+    "Nothing red goes in the bin"."""
+    return _subject_norm("forbid", "anything " + m["rest"], group(m, "act") or "trash", r)
 
 
 @GRAMMAR.rule("norm", rf"(?P<cls>.+?) (?:is|are) (?P<neg>not )?{_OK} (?:for you )?to <ACT>(?: {_IT})?",
               rf"(?P<cls>.+?) (?:can|may|could) (?:always |safely )?be {_PASSIVE}",
-              r"(?P<cls>.+?) (?:can|may|could) go in the (?:trash|bin|garbage)",
+              rf"(?P<cls>.+?) (?:(?:can|may|could) go|goes|go) {_IN_BIN}",
               rf"(?P<cls>.+?) (?P<neg>can not|may not|must not|must never|should not|should never|"
               rf"is not to|are not to|are never to|is never to|shall not) be {_PASSIVE}",
-              r"(?P<cls>.+?) (?P<neg>can not|may not|must not|should not|should never) go in the "
-              r"(?:trash|bin|garbage)",
+              rf"(?P<cls>.+?) (?P<neg>can not|may not|must not|should not|should never|never|do not|"
+              rf"does not|must never|can never) go {_IN_BIN}",
+              rf"(?P<cls>.+?) (?P<neg>never) goes {_IN_BIN}",
               rf"(?P<cls>.+?) (?P<sign><ALLOW>|<FORBID>)<ACT>(?: {_IT})?")
 def subject_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"Anything green is fine to throw away", "Anything in the trash area can be thrown away",

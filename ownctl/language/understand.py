@@ -11,10 +11,11 @@ A sentence may open with a discourse marker ("so", "okay", "but") and carry a he
 ("..., I think", "pretty sure ..."): the marker is dropped and the hedge lowers the confidence of
 the claims the sentence makes.
 
-An utterance no rule matches as a whole is split at punctuation (. ! ? ; , and dashes) into the
-fewest pieces that each parse: "Hi, I'm Jake. Can you throw this away?" is an introduction then a
-question, and the question is understood with Jake as the speaker; a later piece's "it" is the
-object an earlier one named, and its "he" the agent. A piece that does not parse is skipped only if
+An utterance no rule matches as a whole is split at punctuation (. ! ? ; , and dashes) and before
+"and" or "but" into the fewest pieces that each parse: "Hi, I'm Jake. Can you throw this away?" is
+an introduction then a question, and the question is understood with Jake as the speaker; "The
+cup is mine and the mug is Jake's" two claims. A later piece's "it" is the object an earlier one
+named, and its "he" the agent. A piece that does not parse is skipped only if
 it holds no word that could carry meaning (an action, a name, an owner, a negation: "Go on",
 "Whoa, whoa", "Just so you know") and the rest parses; the reply then says what was ignored. Two
 splits that parse equally well but store different things are refused, with both readings shown.
@@ -72,6 +73,9 @@ MAX_PIECE_CHARS = 200
 SHORT_PIECE_CHARS = 40
 
 _CHUNK_END = re.compile(r"[.!?;,:]+|\s[-\u2013\u2014]+\s|[\u2013\u2014]")
+#: Where a chunk may also end when splitting at punctuation finds no reading: before "and"/"but"
+#: (two sentences joined: "the cup is mine and the mug is Jake's").
+_CONJUNCTION = re.compile(r"\s(?=(?:and|but)\s)", re.IGNORECASE)
 _SENTENCE_END = re.compile(r"[.!?;]")
 _SOCIAL = ("greeting", "thanks", "introduction")
 _DISCOURSE = re.compile(rf"^(?:{alternation(DISCOURSE)} )+")
@@ -225,9 +229,13 @@ def _has_content(text: str, ctx: Context) -> bool:
                for w in words.split())
 
 
-def _chunks(utterance: str) -> list[tuple[int, int]]:
-    """The punctuation-delimited chunks (start, end) of an utterance."""
-    cuts = sorted({0, *(m.end() for m in _CHUNK_END.finditer(utterance)), len(utterance)})
+def _chunks(utterance: str, conjunctions: bool = False) -> list[tuple[int, int]]:
+    """The punctuation-delimited chunks (start, end) of an utterance; with ``conjunctions``, also
+    cut before each "and" and "but"."""
+    ends = [m.end() for m in _CHUNK_END.finditer(utterance)]
+    if conjunctions:
+        ends += [m.end() for m in _CONJUNCTION.finditer(utterance)]
+    cuts = sorted({0, *ends, len(utterance)})
     return list(zip(cuts, cuts[1:], strict=False))
 
 
@@ -278,14 +286,15 @@ def _offer(paths: list[_Path | None], j: int, path: _Path) -> None:
         old.other = path  # the same things in another order is no second reading
 
 
-def _pieces(utterance: str, ctx: Context) -> list[_Piece]:
-    """Split at punctuation into the fewest pieces that each parse, skipping only pieces that say
+def _pieces(utterance: str, ctx: Context, conjunctions: bool = False) -> list[_Piece]:
+    """Split at punctuation (and, with ``conjunctions``, before "and"/"but") into the fewest pieces
+    that each parse, skipping only pieces that say
     nothing, and of those splits the one whose pieces hold fewest sentence ends (dynamic
     programming from left to right: each boundary keeps its best way there, and a piece spans a
     bounded number of characters, so the time is linear). Raises NotUnderstood naming the first
     piece that does not parse, or showing two readings when two best splits would store different
     things."""
-    spans = _chunks(utterance)
+    spans = _chunks(utterance, conjunctions)
     n = len(spans)
     errors: list[OwnctlError] = []  # from pieces that matched a form but named something wrong
     paths: list[_Path | None] = [_Path((0, 0, 0), ctx), *([None] * n)]
@@ -374,10 +383,11 @@ def _understand(utterance: str, ctx: Context) -> Understanding:
             return understand_one(utterance, ctx)
         except OwnctlError as err:
             whole = err
-            if not _CHUNK_END.search(utterance.strip(" .!?;,:")) or "nothing to understand" in err.message:
+            if (not _CHUNK_END.search(utterance.strip(" .!?;,:")) and not _CONJUNCTION.search(utterance)) \
+                    or "nothing to understand" in err.message:
                 raise
     try:
-        pieces = _pieces(utterance, ctx)
+        pieces = _split(utterance, ctx)
         if all(p.ignored is not None for p in pieces):  # every piece says nothing ("ok, ok")
             raise NotUnderstood(utterance)
         return _combine(pieces)
@@ -385,6 +395,21 @@ def _understand(utterance: str, ctx: Context) -> Understanding:
         if isinstance(whole, NotUnderstood) and not whole.detail:
             raise
         raise whole from None
+
+
+def _split(utterance: str, ctx: Context) -> list[_Piece]:
+    """The pieces of a split at punctuation; if it finds no reading, of a split also before "and"
+    and "but", when that one does (otherwise the first split's error stands)."""
+    try:
+        return _pieces(utterance, ctx)
+    except OwnctlError as err:
+        if not _CONJUNCTION.search(utterance):
+            raise
+        first = err
+    try:
+        return _pieces(utterance, ctx, conjunctions=True)
+    except OwnctlError:
+        raise first from None
 
 
 def _formal_norm(utterance: str) -> Understanding | None:

@@ -417,3 +417,54 @@ def test_a_typo_in_a_sentence_that_lacks_its_object_asks_for_the_object() -> Non
 ])
 def test_nothing_both_neither_and_owners_joined_by_and(utterance: str, want: set[str]) -> None:
     assert texts(utterance) == want
+
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("Reasonably confident the ball is Bo's.", {"claim ball bo --p 0.8"}),
+    ("I'm fairly certain Xuan owns the glove.", {"claim glove xuan --p 0.8"}),
+    ("Bo's the owner of the kettle.", {"claim kettle bo"}),
+    ("Xuan is the person who owns the cap.", {"claim cap xuan"}),
+    ("I'm the one who owns the hat", {"claim hat olga"}),
+    ("Clothing belonging to Jake must never be trashed.",
+     {"forbid trash if ownedBy jake and inCategory clothing"}),
+    ("Nothing blue goes into the rubbish.", {"forbid trash if isColored blue"}),
+    ("Toys never go in the bin.", {"forbid trash if inCategory toy"}),
+    ("Anything black goes in the trash.", {"allow trash if isColored black"}),
+    ("Why did you refuse to pick up the cap?", {"explain pickUp cap"}),
+    ("Gather up every item you can.", {"run collectAll"}),
+    ("Chuck out everything you're permitted to throw away.", {"run trashAll"}),
+])
+def test_more_ways_of_saying_claims_norms_questions_and_tasks(utterance: str, want: set[str]) -> None:
+    assert texts(utterance) == want
+
+
+def test_two_sentences_joined_by_and_or_but_are_both_understood() -> None:
+    assert texts("The hat is Bo's and the glove is mine") == {"claim hat bo", "claim glove olga"}
+    assert texts("Don't trash the kettle but throw away the ball") == {
+        "forbid trash on kettle", "check trash ball"}
+    assert texts("Bo and Jake share the cap") == {"claim cap bo", "claim cap jake"}  # one sentence
+    with pytest.raises(NotUnderstood):  # a split that finds no reading keeps the first error
+        understand("Bo and Bo share the kettle", CTX)
+
+
+def test_an_object_named_first_is_what_the_next_sentence_is_about() -> None:
+    assert texts("That glove over there? Casey's.") == {"claim glove casey"}
+    assert texts("The kettle here... that's mine.") == {"claim kettle olga"}
+
+
+def test_a_reproach_for_what_was_done_forbids_it_with_its_reason() -> None:
+    ctx = replace(CTX, about="ball")
+    assert texts("You shouldn't have thrown that out, it's Bo's", ctx) == {
+        "claim ball bo", "forbid trash on ball", "forbid trash if ownedBy bo"}
+    assert texts("You weren't supposed to pick it up.", ctx) == {"forbid pickUp on ball"}
+
+
+def test_a_reason_may_name_the_object_again() -> None:
+    acting = replace(CTX, about="hat", action="pickUp")
+    want = {"skip hat", "claim hat xuan", "forbid pickUp on hat", "forbid pickUp if ownedBy xuan"}
+    assert texts("Put it down, that's Xuan's hat.", acting) == want
+    idle = replace(acting, action=None)
+    assert texts("Hey, that's Xuan's hat you're picking up!", idle) == want - {"skip hat"}
+    # another object named in the reason is a claim about that object, beside the prohibition
+    assert texts("Don't throw that away, it's Jake's cap.", replace(CTX, about="hat")) == {
+        "forbid trash on hat", "claim cap jake"}
