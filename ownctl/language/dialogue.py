@@ -121,8 +121,11 @@ def ask_why_action(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
 
 
 @GRAMMAR.rule("question", r"why(?: .*)?")
-def ask_why(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
-    """"Why not?", "Why?": explain the last refusal."""
+def ask_why(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"Why not?", "Why?": explain the last refusal; not a question joined to another sentence
+    by "and" or "but" (each is then understood on its own)."""
+    if re.search(r" (?:and|but) ", m.group()):
+        return None
     return (AskWhy(),)
 
 

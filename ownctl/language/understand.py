@@ -369,7 +369,7 @@ def _combine(pieces: list[_Piece]) -> Understanding:
     return Understanding(
         main.intent,
         tuple(dict.fromkeys(i for u in parts for i in u.instructions)),
-        " ".join(filter(None, (*(u.reply for u in parts), note))),
+        " ".join(dict.fromkeys(filter(None, (*(u.reply for u in parts), note)))),
         "+".join(u.form for u in parts),
     )
 

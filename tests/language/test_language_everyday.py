@@ -468,3 +468,10 @@ def test_a_reason_may_name_the_object_again() -> None:
     # another object named in the reason is a claim about that object, beside the prohibition
     assert texts("Don't throw that away, it's Jake's cap.", replace(CTX, about="hat")) == {
         "forbid trash on hat", "claim cap jake"}
+
+
+def test_a_why_question_joined_to_another_sentence_keeps_both() -> None:
+    assert texts("Why can't you pick up the cap but throw away the ball?") == {
+        "explain pickUp cap", "check trash ball"}
+    said = understand("Why, and why not?", CTX)
+    assert said.texts() == ("explain",) and said.reply.count("explain") == 1
