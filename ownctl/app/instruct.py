@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING
 from ownctl.app.context import AppContext, Done, use_case
 from ownctl.app.mindstore import changing, refit_focus, refitting
 from ownctl.app.settings import probability
-from ownctl.errors import BadValue, OwnctlError
+from ownctl.errors import BadValue, OwnctlError, UnknownName
 from ownctl.logic.rules import ANY, Norm, Rule, parse_norm
 from ownctl.logic.vocab import action as check_action
 
@@ -51,7 +51,7 @@ def add_claim(
         "exclusive": exclusive,
     }
     with ctx.read() as tx:
-        tx.things.object(obj), tx.world.agent(agent)  # unknown names are errors that list the known ones
+        _claimed_names(tx, obj, agent)
         focus = refit_focus(tx, obj, [a.name for a in tx.world.agents()] if exclusive else [agent])
 
     def change(_: Tx, mind: Mind) -> tuple[float, float]:
@@ -64,6 +64,19 @@ def add_claim(
         f"noted: {obj} is {'not ' if negated else ''}owned by {agent}{alone} (stored p={stored:.3g})",
         {"object": obj, "agent": agent, "p": stored, "trust": trust, "exclusive": exclusive},
     )
+
+
+def _claimed_names(tx: Tx, obj: str, agent: str) -> None:
+    """Check a claim's object and agent exist: unknown names are errors that list the known ones,
+    and an agent and an object given the other way round say so with the command to type."""
+    try:
+        tx.things.object(obj), tx.world.agent(agent)
+    except UnknownName as exc:
+        agents = {a.name for a in tx.world.agents()}
+        if obj in agents and agent not in agents and any(o.name == agent for o in tx.things.objects()):
+            raise OwnctlError(f"{obj!r} is an agent and {agent!r} an object: the object comes first, "
+                              f"ownctl claim {agent} {obj}", exc.valid) from None
+        raise
 
 
 @use_case

@@ -137,6 +137,15 @@ def test_unknown_names_list_the_valid_ones(world: Ownctl) -> None:
     assert "trash" in world.json("check", "thrash", "wallet", code=1)["valid"]
 
 
+def test_a_claim_with_agent_and_object_swapped_says_which_comes_first(world: Ownctl) -> None:
+    before = world.digest()
+    result = world("claim", "xuan", "wallet", code=1)
+    assert result.stderr.strip().splitlines() == [
+        "ownctl: 'xuan' is an agent and 'wallet' an object: the object comes first, ownctl claim wallet xuan"]
+    assert world.digest() == before
+    assert "unknown object 'xuan'" in world("claim", "xuan", "alexis", code=1).stderr  # no object to swap
+
+
 def test_a_forgotten_on_is_named_with_both_forms(world: Ownctl) -> None:
     error = world.json("forbid", "trash", "wallet", code=1)
     assert error["valid"] == ["if", "on"] and "(one object: 'forbid trash on wallet')" in error["error"]
