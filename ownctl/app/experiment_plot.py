@@ -37,6 +37,15 @@ def _panels(result: ExperimentResult) -> list[Panel]:
     return panels
 
 
+def error_bars(means: list[float], halfwidths: list[float], bounded: bool) -> list[list[float]]:
+    """Matplotlib's ``yerr`` (below, above) for intervals ``mean ± halfwidth``; a share
+    (``bounded``) has its interval cut at 0 and 1, where a t-interval over few trials can reach."""
+    if not bounded:
+        return [list(halfwidths), list(halfwidths)]
+    return [[max(0.0, min(h, m)) for m, h in zip(means, halfwidths, strict=True)],
+            [max(0.0, min(h, 1.0 - m)) for m, h in zip(means, halfwidths, strict=True)]]
+
+
 def write_plot(result: ExperimentResult, path: str | Path) -> None:
     """Write the figure to ``path`` (PNG)."""
     import matplotlib
@@ -52,7 +61,8 @@ def write_plot(result: ExperimentResult, path: str | Path) -> None:
         cells = [ours(c) for c in result.conditions]
         means = [c.mean if c is not None else float("nan") for c in cells]
         errs = [c.ci95 if c is not None else 0.0 for c in cells]
-        ax.bar(xs, means, yerr=errs, capsize=4, color="#4c72b0", alpha=0.85,
+        yerr = error_bars(means, errs, bounded=label != "mistakes")
+        ax.bar(xs, means, yerr=yerr, capsize=4, color="#4c72b0", alpha=0.85,
                label=f"ours ({result.learner} learner)")
         published = [paper(c.paper) for c in result.conditions]
         if any(v is not None for v in published):
