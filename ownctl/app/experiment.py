@@ -94,6 +94,15 @@ def is_paper_world(factory: FileWorld) -> bool:
     return agents == gen.PAPER_AGENTS and norms == {parse_norm(n).text() for n in gen.PAPER_NORMS}
 
 
+def ownership_conditions(claims: str) -> list[str]:
+    """The Table 2 conditions whose instructor gives ``claims`` (``all`` or ``owners``)."""
+    from ownctl.experiment.ownership import CLAIM_MODES, condition_names
+
+    if claims not in CLAIM_MODES:
+        raise UnknownName("claim mode", claims, CLAIM_MODES)
+    return condition_names(claims)
+
+
 def task_conditions(task: str) -> list[str] | None:
     """The Table 3 conditions for ``--task`` (None = both)."""
     if task not in TASK_CHOICES:
@@ -117,6 +126,7 @@ def run(
     *,
     scheduler: str | None = None,
     decide: str = "map",
+    claims: str = "all",
 ) -> ExperimentResult:
     """Run ``experiment`` (norms, ownership, task) and write the optional CSV and plot files.
 
@@ -124,7 +134,9 @@ def run(
     seeds from ``family_seed`` (default: the start of the reserved evaluation range) instead of one
     world. ``scheduler``: run the trials on the Dask cluster at that address instead of ``jobs``
     local processes (the same results). ``decide``: learned rules decide (and are scored) on the
-    most probable rule set (``map``) or marginalised over rule sets (``posterior``).
+    most probable rule set (``map``) or marginalised over rule sets (``posterior``). ``claims``
+    (ownership only): the instructor gives every agent's claims (``all``, the paper's protocol)
+    or only the owners' "that's mine" (``owners``; conditions (i')-(iii')).
     """
     from ownctl.experiment.registry import get_experiment
     from ownctl.experiment.runner import check_settings, run_experiment
@@ -134,6 +146,10 @@ def run(
     conditions = task_conditions(task) if exp.name == "task" else None
     if exp.name != "task" and task != "both":
         raise BadValue(f"--task only applies to the task experiment, not {exp.name!r}")
+    if exp.name == "ownership":
+        conditions = ownership_conditions(claims)
+    elif claims != "all":
+        raise BadValue(f"--claims only applies to the ownership experiment, not {exp.name!r}")
     chosen_families = _families(exp.name, families, family_seed, world)
     check_folder("csv", csv_path)
     check_plot(plot_path)
@@ -143,7 +159,8 @@ def run(
     if exp.name == "ownership":
         from ownctl.experiment.calibration import calibration
 
-        result.extra["calibration"] = calibration(factory, trials, seed, learner)
+        chosen = [exp.condition_names().index(n) for n in conditions or ()]
+        result.extra["calibration"] = calibration(factory, trials, seed, learner, chosen)
         result.extra["calibration_note"] = CALIBRATION_NOTE
     if csv_path is not None:
         write_csv(result, csv_path)

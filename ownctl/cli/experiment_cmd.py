@@ -60,13 +60,14 @@ PlotOpt = Annotated[str | None, typer.Option("--plot", metavar="FILE.png", help=
 
 def _run(experiment: str, trials: int, seed: int, jobs: int, world: str | None, learner: str, task: str,
          json_out: bool, csv: str | None, plot: str | None, quiet: bool, families: int | None = None,
-         family_seed: int | None = None, scheduler: str | None = None, decide: str = "map") -> None:
+         family_seed: int | None = None, scheduler: str | None = None, decide: str = "map",
+         claims: str = "all") -> None:
     from ownctl.app import experiment as app
 
     bar = None if quiet else progress_bar(f"experiment {experiment}")
     try:  # errors are reported by the command group, like every command's
         result = app.run(experiment, trials, seed, jobs, world, learner, task, csv, plot, bar, families,
-                         family_seed, scheduler=scheduler, decide=decide)
+                         family_seed, scheduler=scheduler, decide=decide, claims=claims)
     finally:
         if bar is not None:
             bar.stop()
@@ -109,13 +110,16 @@ def ownership(
     trials: TrialsOpt = 100, seed: SeedOpt = 0, jobs: JobsOpt = 1, scheduler: SchedulerOpt = None,
     world: WorldOpt = None, learner: LearnerOpt = "ours", json_out: JsonOpt = False, csv: CsvOpt = None,
     plot: PlotOpt = None, quiet: QuietOpt = False,
+    claims: Annotated[str, typer.Option(
+        "--claims", metavar="all|owners", help="The claims given on the claimed half: every agent's, "
+        "owned or not (all, the paper's protocol), or only each owner's \"that's mine\" (owners).")] = "all",
 ) -> None:
     """Table 2: predict the ownership of held-out objects.
 
     Claims and permissions are given on half of the objects; the other half is predicted.
     """
     _run("ownership", trials, seed, jobs, world, learner, "both", json_out, csv, plot, quiet,
-         scheduler=scheduler)
+         scheduler=scheduler, claims=claims)
 
 
 @experiment_app.command("task")

@@ -2,10 +2,12 @@
 
 Each trial draws a new world and picks half of the objects at random. Those objects get, one at a
 time, exact ownership claims for every agent and then the true permissions of every action that has
-a true norm. Ownership (the Mind's posterior) is scored against the truth on the held-out half and on
-all objects, per agent. Prediction is on in every condition; the conditions switch inference and
+a true norm. Ownership (the Mind's posterior) is scored against the truth on the held-out half and
+on all objects, per agent. Prediction is on in every condition; the conditions switch inference and
 rule learning: (i) inference off, rules frozen; (ii) rules learned, inference on; (iii) the true
-norms given first, inference on.
+norms given first, inference on. In conditions (i')-(iii') (``--claims owners``) each claimed
+object is claimed only by its owners, as people say "that's mine": nothing is said of who does not
+own it, nor of an object nobody owns.
 """
 
 from __future__ import annotations
@@ -24,22 +26,36 @@ from ownctl.logic.rules import parse_norm
 from ownctl.mind import Mind, Switches
 from ownctl.world.model import World, make_frame
 
+#: Which claims the instructor gives on the claimed half: every agent's, 0 or 1 (the paper's
+#: protocol), or only its owners' "that's mine".
+CLAIM_MODES = ("all", "owners")
+
 
 @dataclass(frozen=True)
 class OwnershipCondition:
-    """One row of Table 2: whether inference runs, rules are learned, the true norms are given."""
+    """One row of Table 2: whether inference runs, rules are learned, the true norms are given,
+    and which claims are given (:data:`CLAIM_MODES`)."""
 
     name: str
     inference: bool
     learn_rules: bool
     rules_given: bool
+    claims: str = "all"
 
 
+_ROWS = (("(i{}) no inference", False, False, False), ("(ii{}) rules learned", True, True, False),
+         ("(iii{}) rules given", True, True, True))
 OWNERSHIP_CONDITIONS = (
-    OwnershipCondition("(i) no inference", inference=False, learn_rules=False, rules_given=False),
-    OwnershipCondition("(ii) rules learned", inference=True, learn_rules=True, rules_given=False),
-    OwnershipCondition("(iii) rules given", inference=True, learn_rules=True, rules_given=True),
+    *(OwnershipCondition(name.format(""), inference=i, learn_rules=lr, rules_given=g)
+      for name, i, lr, g in _ROWS),
+    *(OwnershipCondition(name.format("'") + ", owners' claims", inference=i, learn_rules=lr,
+                         rules_given=g, claims="owners") for name, i, lr, g in _ROWS),
 )
+
+
+def condition_names(claims: str) -> list[str]:
+    """The names of the conditions whose instructor gives ``claims`` (of :data:`CLAIM_MODES`)."""
+    return [c.name for c in OWNERSHIP_CONDITIONS if c.claims == claims]
 
 
 def ownership_trial(make_world: WorldFactory, cond: OwnershipCondition, learner: str,
@@ -77,7 +93,10 @@ def protocol(make_world: WorldFactory, cond: OwnershipCondition, learner: str,
     for obj in train:
         i = int(obj)
         for j, agent in enumerate(world.agents):
-            mind.claim(i, agent, float(truth[i, j]))
+            if cond.claims == "all":
+                mind.claim(i, agent, float(truth[i, j]))
+            elif truth[i, j] >= 0.5:  # "that's mine", said by an owner
+                mind.claim(i, agent, 1.0)
         for action in rules:
             mind.permit(action, i, float(answers[action][i]))
     return mind, world, test

@@ -50,10 +50,15 @@ class Experiment:
     references: Mapping[str, Paper] = field(default_factory=dict)  # other published systems
     metrics: tuple[str, ...] = ()
     groups: Mapping[str, str] = field(default_factory=dict)  # group -> description
+    optional: frozenset[str] = frozenset()  # conditions run only when named (another protocol)
 
     def condition_names(self) -> list[str]:
         """Names of the conditions, in order."""
         return [c.name for c in self.conditions]
+
+    def default_names(self) -> list[str]:
+        """Names of the conditions run when none are named: all but the optional ones."""
+        return [n for n in self.condition_names() if n not in self.optional]
 
 
 NORMS = Experiment(
@@ -100,6 +105,7 @@ OWNERSHIP = Experiment(
     },
     metrics=(OWNERSHIP_METRICS, CI_NOTE),
     groups={"test": "ownership on the held-out half", "all": "ownership on all objects"},
+    optional=frozenset(c.name for c in OWNERSHIP_CONDITIONS if c.claims != "all"),
 )
 
 TASK = Experiment(

@@ -90,10 +90,11 @@ def _condition_dict(c: ConditionSummary) -> dict[str, Any]:
 
 
 def select_conditions(exp: Experiment, names: Sequence[str] | None) -> list[int]:
-    """Indices of the named conditions (all when ``names`` is None); UnknownName otherwise."""
+    """Indices of the named conditions (when ``names`` is None, all but the experiment's optional
+    ones); UnknownName otherwise."""
     all_names = exp.condition_names()
     if names is None:
-        return list(range(len(all_names)))
+        return [all_names.index(n) for n in exp.default_names()]
     out = []
     for n in names:
         if n not in all_names:

@@ -40,6 +40,18 @@ def test_json_document_has_the_design_shape() -> None:
         assert 0 <= c["accuracy"] <= 1 and set(c["ci95"]) == {"accuracy", "f1"}
 
 
+def test_owners_claims_run_their_own_conditions() -> None:
+    res = run("ownership", "--trials", "2", "--json", "--seed", "3", "--claims", "owners")
+    assert res.exit_code == 0, res.stderr
+    doc = json.loads(res.stdout)
+    names = ["(i') no inference, owners' claims", "(ii') rules learned, owners' claims",
+             "(iii') rules given, owners' claims"]
+    assert [c["name"] for c in doc["conditions"]] == names
+    assert [c["name"] for c in doc["calibration"]] == names
+    assert all(c["paper"] == {} for c in doc["conditions"])  # not the paper's protocol
+    assert "no such option: --claims" in run("norms", "--trials", "1", "--claims", "owners").stderr
+
+
 @pytest.mark.slow
 def test_task_selection_tables_and_files(tmp_path: Path) -> None:
     out_csv, out_png = tmp_path / "t3.csv", tmp_path / "t3.png"
@@ -83,6 +95,7 @@ def test_quiet_prints_nothing() -> None:
         (["norms", "--families", "2", "--family-seed=-3"], "--family-seed must be a non-negative integer"),
         (["task", "--task", "tidyAll"], "unknown task 'tidyAll'"),
         (["ownership", "--world", "no/such/world.toml"], "does not exist"),
+        (["ownership", "--claims", "some"], "unknown claim mode 'some'; known claim modes: all, owners"),
         (["task", "--ask-temper", "0.5"], "--ask-temper applies only with --ask"),
         (["task", "--ask-as-given"], "--ask-read/--ask-as-given applies only with --ask"),
         (["task", "--ask", "1", "--ask-temper", "0"], "must be in (0, 1]"),
