@@ -66,6 +66,10 @@ class PredictConfig:
     recalibrate_scale: float = 1.0  # prior std of that rescaling's slope (around 1) and intercept (around 0)
     scales: tuple[float, ...] = (1.0, 0.1, 0.01)  # multipliers of C: how far percepts may move predictions
     scale_bonus: float = 2.0  # log prior odds (nats) of the first scale over each other one
+    # what an agent's silence about a claimed object says (ownctl/ownership/silence.py): the weight
+    # kappa is rounded down to a multiple of silence_step and kept at most silence_max (0: off)
+    silence_step: float = 0.2
+    silence_max: float = 0.8
 
 
 @dataclass(frozen=True)

@@ -57,6 +57,7 @@ from functools import cached_property
 import numpy as np
 
 from ownctl.config import PredictConfig
+from ownctl.ownership.silence import silent_curvature, silent_loss, silent_target
 
 MAX_NEWTON = 50
 TOLERANCE = 1e-10
@@ -105,18 +106,27 @@ class KernelOwnershipModel:
         return _off_half((float(np.sum(p)) + pseudo * self.cfg.base_rate) / (len(p) + pseudo))
 
     def fit(self, X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None,
-            scale: float = 1.0, kernel: np.ndarray | None = None) -> KernelOwnershipModel:
+            scale: float = 1.0, kernel: np.ndarray | None = None, kappa: float = 0.0) -> KernelOwnershipModel:
         """Fit on feature rows ``X`` (n, d) and soft targets ``p`` (n,) in [0, 1]; returns self.
         ``offset`` (n,): a borrowed logit term per row (:meth:`SharedRecency.term`) added to the
         model's own; pass the same rule's offset to :meth:`predict_proba`. ``scale`` multiplies
         the prior variance of the kernel and linear parts (``C``): how far percepts may move a
         prediction (:func:`fit_scales`). :attr:`evidence_` is the log marginal likelihood of the
         claims under that prior (0 without claims). ``kernel``: the RBF kernel of ``X`` with itself,
-        when the caller has it."""
+        when the caller has it. A row whose target is NaN is the agent's silence about an object
+        others made claims about, weighed by ``kappa`` (:mod:`ownctl.ownership.silence`; dropped
+        when ``kappa`` is 0)."""
         X = np.asarray(X, dtype=float).reshape(len(p), -1) if len(p) else np.zeros((0, 0))
         p = np.clip(np.asarray(p, dtype=float).reshape(len(X)), 0.0, 1.0)
-        self.base_ = self.prior_(p)
-        self.n_claims_ = len(p)
+        silent = np.isnan(p)
+        if kappa <= 0 and silent.any():
+            X, p = X[~silent], p[~silent]
+            kernel = None if kernel is None else kernel[np.ix_(~silent, ~silent)]
+            offset = None if offset is None else np.asarray(offset, dtype=float).reshape(-1)[~silent]
+            silent = silent[~silent]
+        self.base_ = self.prior_(p[~silent])
+        self.n_claims_ = int((~silent).sum())
+        self.kappa_ = float(kappa) if silent.any() else 0.0
         self.offset_ = offset is not None
         self.scale_ = scale
         self.evidence_ = 0.0
@@ -129,11 +139,11 @@ class KernelOwnershipModel:
         K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
         design, penalty, mean = _system(X, cfg, scale, K)
         shift = np.zeros(len(p)) if offset is None else np.asarray(offset, dtype=float).reshape(len(p))
-        self.coef_ = _newton(design, p, penalty, mean, shift)
+        self.coef_ = _newton(design, p, penalty, mean, shift, self.kappa_)
         self.evidence_ = log_evidence(X, p, cfg, scale, design @ self.coef_ + shift,
-                                      _prior_term(self.coef_, penalty, mean), K)
+                                      _prior_term(self.coef_, penalty, mean), K, self.kappa_)
         self.support_ = X
-        if len(p) >= cfg.recalibrate_min:
+        if self.n_claims_ >= cfg.recalibrate_min:
             self.recalibration_ = (design, p, penalty, shift)
         return self
 
@@ -145,7 +155,9 @@ class KernelOwnershipModel:
         if self.recalibration_ is None:
             return 1.0, 0.0
         design, p, penalty, shift = self.recalibration_
-        return rescaling(loo_logits(design, p, penalty, self.coef_, shift), p, self.cfg.recalibrate_scale)
+        claimed = ~np.isnan(p)
+        logits = loo_logits(design, p, penalty, self.coef_, shift, self.kappa_)[claimed]
+        return rescaling(logits, p[claimed], self.cfg.recalibrate_scale)
 
     def decision_function(self, X: np.ndarray, offset: np.ndarray | None = None) -> np.ndarray:
         """The logit for each row of ``X`` (n,): ``a (f(x) + offset) + b``, with ``offset`` (n,) for a
@@ -237,13 +249,14 @@ def rounded(slope: float, step: float) -> float:
 
 
 def fit_scales(X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None,
-               cfg: PredictConfig | None = None) -> list[KernelOwnershipModel]:
+               cfg: PredictConfig | None = None, kappa: float = 0.0) -> list[KernelOwnershipModel]:
     """One agent's model fitted at each of ``cfg.scales`` (their :attr:`evidence_` says how well
-    each prior explains the claims; :func:`pooled_scale` picks one for every agent)."""
+    each prior explains the claims; :func:`pooled_scale` picks one for every agent); rows whose
+    target is NaN are silences weighed by ``kappa`` (:meth:`KernelOwnershipModel.fit`)."""
     cfg = cfg or PredictConfig()
     X = np.asarray(X, dtype=float)
     K = rbf_kernel(X, X, cfg.gamma) if len(p) else None
-    return [KernelOwnershipModel(cfg).fit(X, p, offset, scale, K) for scale in cfg.scales]
+    return [KernelOwnershipModel(cfg).fit(X, p, offset, scale, K, kappa) for scale in cfg.scales]
 
 
 def pooled_scale(evidence: Iterable[Sequence[float]], cfg: PredictConfig | None = None) -> int:
@@ -266,20 +279,21 @@ def pooled_scale(evidence: Iterable[Sequence[float]], cfg: PredictConfig | None 
 
 
 def log_evidence(X: np.ndarray, p: np.ndarray, cfg: PredictConfig, scale: float, f: np.ndarray,
-                 prior_term: float, kernel: np.ndarray | None = None) -> float:
+                 prior_term: float, kernel: np.ndarray | None = None, kappa: float = 0.0) -> float:
     """The Laplace approximation of log p(claims | scale) at the fit's logits ``f`` of the claimed
     rows ``X``: the soft log-likelihood, minus the prior term ``prior_term`` (half the penalty at
     the fit), minus half the log determinant of ``I + W^1/2 S W^1/2``, with ``S`` the prior
     covariance of the logits (``scale C (K + X X') + intercept_scale^2``) and ``W`` the logistic
     curvature at ``f`` (Rasmussen and Williams, Gaussian Processes for Machine Learning, 3.4.4).
-    ``kernel``: the RBF kernel of ``X`` with itself, when the caller has it."""
+    ``kernel``: the RBF kernel of ``X`` with itself, when the caller has it. Rows whose target is
+    NaN are silences weighed by ``kappa`` (their curvature where convex)."""
     n = len(p)
     K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
     cov = scale * cfg.C * (K + X @ X.T) + cfg.intercept_scale**2
     s = _sigmoid(f)
-    root = np.sqrt(s * (1.0 - s))
+    root = np.sqrt(_curvature(s, p, kappa))
     chol = np.linalg.cholesky(np.eye(n) + root[:, None] * cov * root[None, :])
-    return -_soft_loss(f, p) - prior_term - float(np.sum(np.log(np.diag(chol))))
+    return -_loss(f, p, kappa) - prior_term - float(np.sum(np.log(np.diag(chol))))
 
 
 def _prior_term(theta: np.ndarray, penalty: np.ndarray, mean: np.ndarray) -> float:
@@ -290,6 +304,31 @@ def _prior_term(theta: np.ndarray, penalty: np.ndarray, mean: np.ndarray) -> flo
 def _soft_loss(f: np.ndarray, p: np.ndarray) -> float:
     """The soft cross-entropy of targets ``p`` under logits ``f``, summed."""
     return float(np.sum(np.logaddexp(0.0, -f) * p + np.logaddexp(0.0, f) * (1.0 - p)))
+
+
+def _loss(f: np.ndarray, p: np.ndarray, kappa: float) -> float:
+    """:func:`_soft_loss` of the rows with a target, plus the silent rows' (NaN target) loss."""
+    silent = np.isnan(p)
+    if not silent.any():
+        return _soft_loss(f, p)
+    return _soft_loss(f[~silent], p[~silent]) + silent_loss(f[silent], kappa)
+
+
+def _residual(s: np.ndarray, p: np.ndarray, kappa: float) -> np.ndarray:
+    """The loss's gradient in each row's logit: ``s - p``, ``s - q`` for a silent row."""
+    silent = np.isnan(p)
+    target = np.where(silent, silent_target(s, kappa), p) if silent.any() else p
+    out: np.ndarray = s - target
+    return out
+
+
+def _curvature(s: np.ndarray, p: np.ndarray, kappa: float) -> np.ndarray:
+    """The loss's second derivative in each row's logit: ``s (1 - s)``, a silent row's where convex."""
+    silent = np.isnan(p)
+    if not silent.any():
+        return s * (1.0 - s)
+    out: np.ndarray = np.where(silent, silent_curvature(s, kappa), s * (1.0 - s))
+    return out
 
 
 def _system(X: np.ndarray, cfg: PredictConfig, scale: float = 1.0,
@@ -311,7 +350,7 @@ def _system(X: np.ndarray, cfg: PredictConfig, scale: float = 1.0,
 
 
 def loo_logits(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, theta: np.ndarray,
-               offset: np.ndarray) -> np.ndarray:
+               offset: np.ndarray, kappa: float = 0.0) -> np.ndarray:
     """(n,) the logit of each row under the fit without it, by one Newton step from the fit
     ``theta`` of all rows (the minimiser of :func:`_newton`'s objective): with ``H`` the
     objective's Hessian at ``theta``, ``w_i = s_i (1 - s_i)`` and ``q_i = d_i' H^-1 d_i``,
@@ -320,14 +359,14 @@ def loo_logits(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, theta: np
     close to a refit for logistic ones (tests/ownership/test_ownership_recalibrate.py)."""
     f = design @ theta + offset
     s = _sigmoid(f)
-    w = s * (1.0 - s)
+    w = _curvature(s, p, kappa)
     hess = design.T @ (design * w[:, None]) + penalty + 1e-9 * np.eye(len(theta))
     # d_i' H^+ d_i from one symmetric eigendecomposition (H's pseudo-inverse, as _newton's lstsq
     # takes it: eigenvalues below the same relative cut-off count as 0)
     values, vectors = np.linalg.eigh(hess)
     keep = values > values.max() * np.finfo(float).eps * len(values)
     q = np.sum((design @ vectors[:, keep]) ** 2 / values[keep], axis=1)
-    out: np.ndarray = f + (s - p) * q / np.maximum(1.0 - w * q, 1e-12)
+    out: np.ndarray = f + _residual(s, p, kappa) * q / np.maximum(1.0 - w * q, 1e-12)
     return out
 
 
@@ -347,20 +386,21 @@ def rescaling(logits: np.ndarray, p: np.ndarray, scale: float) -> tuple[float, f
 
 
 def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.ndarray,
-            offset: np.ndarray) -> np.ndarray:
+            offset: np.ndarray, kappa: float = 0.0) -> np.ndarray:
     """Minimise soft cross-entropy of sigmoid(design t + offset) + 0.5 (t - mean)' P (t - mean) by
-    damped Newton steps."""
+    damped Newton steps (rows whose target is NaN: the silence loss weighed by ``kappa``, with its
+    curvature where convex; the line search keeps every step downhill)."""
 
     def objective(theta: np.ndarray) -> float:
-        return _soft_loss(design @ theta + offset, p) + _prior_term(theta, penalty, mean)
+        return _loss(design @ theta + offset, p, kappa) + _prior_term(theta, penalty, mean)
 
     theta = mean.copy()
     current = objective(theta)
     ridge = 1e-9 * np.eye(len(theta))
     for _ in range(MAX_NEWTON):
         s = _sigmoid(design @ theta + offset)
-        grad = design.T @ (s - p) + penalty @ (theta - mean)
-        hess = design.T @ (design * (s * (1.0 - s))[:, None]) + penalty + ridge
+        grad = design.T @ _residual(s, p, kappa) + penalty @ (theta - mean)
+        hess = design.T @ (design * _curvature(s, p, kappa)[:, None]) + penalty + ridge
         step = np.linalg.lstsq(hess, grad, rcond=None)[0]
         t = 1.0
         new = objective(theta - step)
