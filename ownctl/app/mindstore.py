@@ -44,6 +44,8 @@ VERSION = "predict.version"
 #: :attr:`Mind.scale` (the scale the stored priors use), internal values like ``LENT``.
 EVIDENCE = "predict.evidence"
 SCALE = "predict.scale"
+#: :attr:`Mind.silence` (what silence weighs in the stored priors), an internal value like ``LENT``.
+SILENCE = "predict.silence"
 
 T = TypeVar("T")
 
@@ -112,6 +114,7 @@ class _Base:
     lent: float | None  # the slope the borrowers' stored priors use (Mind.lent)
     evidence: dict[str, tuple[float, ...]]  # Mind.scale_evidence
     scale: int  # Mind.scale
+    silence: float  # Mind.silence
     layout: int  # the Mind's layout when this was taken (same layout: same objects and agents)
     version: int | None = PREDICTOR_VERSION  # the predictor that wrote the stored priors (None: another)
 
@@ -171,7 +174,7 @@ class Stored:
             prior=mind.predicted.copy(), source=mind.prior_source.copy(), posterior=post,
             perms={a: dict(g) for a, g in mind.perms.items()}, rules=_rules_state(mind),
             switches=_switch_values(mind), lent=mind.lent, evidence=dict(mind.scale_evidence),
-            scale=mind.scale, layout=mind.layout,
+            scale=mind.scale, silence=mind.silence, layout=mind.layout,
         )
 
     def _follow(self, edited: frozenset[str], respecified: frozenset[str],
@@ -193,6 +196,7 @@ class Stored:
         base.lent = mind.lent
         base.evidence = dict(mind.scale_evidence)
         base.scale = mind.scale
+        base.silence = mind.silence
         base.areas = tuple(mind.areas)
 
     # -- saving ---------------------------------------------------------------------------------
@@ -226,6 +230,8 @@ class Stored:
             tx.meta.set_setting(EVIDENCE, {a: list(v) for a, v in mind.scale_evidence.items()} or None)
         if mind.scale != base.scale:
             tx.meta.set_setting(SCALE, mind.scale or None)
+        if mind.silence != base.silence:
+            tx.meta.set_setting(SILENCE, mind.silence or None)
         if base.version != PREDICTOR_VERSION:
             tx.meta.set_setting(VERSION, PREDICTOR_VERSION)
             base.version = PREDICTOR_VERSION
@@ -497,6 +503,14 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     mind.scale_evidence = {a: tuple(float(x) for x in v) for a, v in evidence.items() if a in mind.agents}
     mind.scale = stored_scale(stored)
     index = {r.id: i for i, r in enumerate(rows)}
+    others = None
+    if focus is not None:  # the claims of the agents not loaded, as silence needs them
+        mask = np.zeros(len(rows), dtype=bool)
+        owned = not_owned = 0.0
+        for object_id, total, count in tx.beliefs.claim_census(focus):
+            mask[index[object_id]] = True
+            owned, not_owned = owned + total, not_owned + count - total
+        others = (mask, owned, not_owned)
     column = {a.id: j for j, a in enumerate(known)}
     stored_post = np.full(mind.claims.shape, np.nan)
     prior = np.full(mind.claims.shape, np.nan)
@@ -548,6 +562,7 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     for row in tx.knowledge.rules():
         mind.restore_rule(row.action, rule_of(row.text, row.origin),
                           RuleInfo(row.origin, dict(row.provenance or {})))
+    mind.restore_silence(float(stored.get(SILENCE) or 0.0), others)
     out = Stored(mind, {r.name: r.id for r in rows}, agent_ids, writable)
     # compare with what the store really holds (NULL priors and posteriors are written on save)
     held = np.flatnonzero(~np.isnan(stored_post).all(axis=1))
@@ -569,9 +584,14 @@ def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:
     """The agents whose predictors a claim or touch about ``obj`` by ``agents`` may refit, for a
     partial load (:func:`load`), or None (load every agent) when an agent's predictor borrows from
     the others' claims or may start to (ownctl/ownership/predict.py, "What other agents' claims
-    teach"): while some agent has no claim that it owns an object other than ``obj``. (Stores
-    always share recency: the core's ``PredictConfig.share_recency`` has no store setting.)"""
+    teach"): while some agent has no claim that it owns an object other than ``obj``, and while
+    silence weighs and no claim is about ``obj`` yet (every agent silent about it may learn from a
+    first one; ownctl/ownership/silence.py). (Stores always share recency: the core's
+    ``PredictConfig.share_recency`` has no store setting.)"""
     besides = tx.things.object(obj).id
+    if float(tx.meta.settings().get(SILENCE) or 0.0) > 0 and \
+            all(b.claim_p is None for b in tx.beliefs.held([besides])):
+        return None  # a first claim about the object: every silent agent's predictor learns of it
     owning = tx.beliefs.agents_owning(besides)
     if all(a.id in owning for a in tx.world.agents()):
         return list(agents)

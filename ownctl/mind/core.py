@@ -53,6 +53,7 @@ from ownctl.ownership.predict import (
     owns_some,
     pooled_scale,
 )
+from ownctl.ownership.silence import census, silence_weight
 from ownctl.world.model import Area, ObjectSpec, Position, make_frame, positions
 
 if TYPE_CHECKING:  # the learner is imported when a Mind first learns, not to decide one action
@@ -286,6 +287,13 @@ class Mind:
         self.scale_evidence: dict[str, tuple[float, ...]] = {}
         self.scale = 0
         self._rescore = False  # the agents changed: choose the scale again
+        # what an agent's silence about an object others made claims about weighs (kappa of
+        # ownctl/ownership/silence.py) as every predictor uses it, the objects examined (claimed by
+        # some agent) as of the last refresh, and their rows during one; see _follow_silence
+        self.silence = 0.0
+        self._examined: frozenset[str] = frozenset()
+        self._examined_rows: np.ndarray | None = None
+        self._others: tuple[np.ndarray, float, float] | None = None  # a partial Mind: the others' census
         self._posterior: np.ndarray | None = None
         self._inferred: tuple[list[int], np.ndarray] | None = None
 
@@ -366,6 +374,8 @@ class Mind:
         self._lending = {}  # the lenders' recency fit, computed once for every borrower refitted here
         self._lenders = None
         try:
+            if self._stale or self._rescore:
+                self._follow_silence()
             if self._stale:
                 self._follow_lenders()
             fits = {a: self._fit(a) for a in sorted(self._stale) if a in self.agents}
@@ -376,8 +386,58 @@ class Mind:
         finally:
             self._lending = None
             self._lenders = None
+            self._examined_rows = None
         self._stale.clear()
         self._rescore = False
+
+    def census(self) -> tuple[np.ndarray, float, float]:
+        """Which objects some claim is about (n,), and the claims' total weight for "owns" and for
+        "does not own", over every agent (:func:`ownctl.ownership.silence.census`; a partial Mind
+        adds the store's count of the agents it did not load, :meth:`restore_silence`)."""
+        if self._others is None or self._refit is None:
+            return census(self.claims)
+        cols = [j for j, a in enumerate(self.agents) if a in self._refit]
+        mask, owned, not_owned = census(self.claims[:, cols])
+        their_mask, their_owned, their_not = self._others
+        return mask | their_mask, owned + their_owned, not_owned + their_not
+
+    def restore_silence(self, kappa: float, others: tuple[np.ndarray, float, float] | None = None) -> None:
+        """The weight of silence the stored priors use, and for a partial Mind the census of the
+        claims of the agents it did not load (examined objects (n,), weight for "owns", for "does
+        not own"): the state a store holds (ownctl/app/mindstore.py)."""
+        self._others = others
+        self.silence = float(kappa)
+        mask, _, _ = self.census()
+        self._examined = frozenset(self.objects[i].name for i in np.flatnonzero(mask))
+
+    def _follow_silence(self) -> None:
+        """Choose the weight of silence again from every agent's claims
+        (:func:`~ownctl.ownership.silence.silence_weight`) and refit the predictors it moves: every
+        agent's when it changes, else, while silence weighs, those of the agents silent about an
+        object some claim is now about, or no longer (their silent rows changed). A partial Mind
+        that did not load them raises :class:`WholeMindNeeded`."""
+        if not self.switches.prediction:
+            return
+        mask, owned, not_owned = self.census()
+        kappa = silence_weight(int(mask.sum()), len(self.agents), owned, not_owned, self.settings.predict)
+        names = frozenset(self.objects[i].name for i in np.flatnonzero(mask))
+        stale: set[str] = set()
+        if kappa != self.silence:
+            stale = set(self.agents)
+        elif kappa > 0 and names != self._examined:
+            changed = names ^ self._examined
+            if any(n not in self.index for n in changed):
+                stale = set(self.agents)
+            else:
+                rows = [self.index[n] for n in changed]
+                stale = {a for j, a in enumerate(self.agents) if np.isnan(self.claims[rows, j]).any()}
+        fresh = stale - self._stale
+        if fresh and self._refit is not None and not fresh <= self._refit:
+            raise WholeMindNeeded(f"silence now weighs {kappa:g} (was {self.silence:g}) or is about other "
+                                  "objects: the agents' predictors are refitted")
+        self._stale.update(fresh)
+        self._edited.update(fresh)
+        self.silence, self._examined, self._examined_rows = kappa, names, mask
 
     def _follow_scale(self, fits: dict[str, _Fit | None]) -> None:
         """Take the refitted agents' evidence and choose the scale every predictor uses again
@@ -436,6 +496,9 @@ class Mind:
         self._changed()
 
     def _claimed_agents(self) -> list[str]:
+        """The agents whose predictors learn from something: a claim, or silence where it weighs."""
+        if self.silence > 0 and self._examined:
+            return list(self.agents)
         return [a for j, a in enumerate(self.agents) if not np.isnan(self.claims[:, j]).all()]
 
     def features(self, agent: str) -> tuple[np.ndarray, np.ndarray]:
@@ -518,7 +581,13 @@ class Mind:
         X, known = self.features(agent)
         own = self.claims[known, j]
         offset = self.borrowed_term(agent, own, X[:, -1])
-        models = fit_scales(X[known], own, None if offset is None else offset[known], self.settings.predict)
+        rows = known
+        if self.silence > 0:  # the agent's silence about objects others made claims about
+            examined = self.census()[0] if self._examined_rows is None else self._examined_rows
+            rows = known | examined
+        targets = np.where(known, self.claims[:, j], np.nan)[rows]
+        models = fit_scales(X[rows], targets, None if offset is None else offset[rows], self.settings.predict,
+                            self.silence)
         return _Fit(models, X, offset)
 
     def _predict(self, j: int, fit: _Fit | None) -> None:

@@ -62,10 +62,10 @@ from ownctl.ownership.silence import silent_curvature, silent_loss, silent_targe
 MAX_NEWTON = 50
 TOLERANCE = 1e-10
 #: Raised whenever what the predictor computes from the same claims and percepts changes (2: the
-#: recalibration on claims left out; 3: the scale pooled over agents). A store whose priors
-#: another version wrote refits them on its next load (ownctl/app/mindstore.py), so a store keeps
-#: meaning what a Mind told the same things would believe.
-PREDICTOR_VERSION = 3
+#: recalibration on claims left out; 3: the scale pooled over agents; 4: silence weighed). A store
+#: whose priors another version wrote refits them on its next load (ownctl/app/mindstore.py), so a
+#: store keeps meaning what a Mind told the same things would believe.
+PREDICTOR_VERSION = 4
 
 
 def _sigmoid(z: np.ndarray) -> np.ndarray:

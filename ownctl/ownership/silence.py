@@ -51,7 +51,7 @@ def silence_weight(examined: int, agents: int, owned: float, not_owned: float,
         return 0.0
     kappa = max(0.0, (c1 - c0) / (1.0 - c0))
     steps = math.floor(kappa / cfg.silence_step + 1e-9)
-    return float(min(cfg.silence_max, steps * cfg.silence_step))
+    return float(min(cfg.silence_max, round(steps * cfg.silence_step, 9)))
 
 
 def census(claims: np.ndarray) -> tuple[np.ndarray, float, float]:

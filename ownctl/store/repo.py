@@ -518,6 +518,16 @@ class Beliefs(_Part):
             out.extend(self._rows(query.where(ownership.c.object_id.in_(ids[start : start + CHUNK]))))
         return out
 
+    def claim_census(self, besides_agents: Sequence[int] = ()) -> list[tuple[int, float, int]]:
+        """Per object some claim is about: its id, the claims' total probability and their count,
+        over the agents other than ``besides_agents`` (one grouped query over the claims)."""
+        c = ownership.c
+        query = (select(c.object_id, func.sum(c.claim_p), func.count(c.claim_p))
+                 .where(c.claim_p.is_not(None)).group_by(c.object_id))
+        if besides_agents:
+            query = query.where(c.agent_id.not_in(list(besides_agents)))
+        return [(int(o), float(total), int(n)) for o, total, n in self._rows(query)]
+
     def agents_owning(self, besides: int | None = None) -> set[int]:
         """The ids of the agents some claim says own an object (``claim_p`` at least 1/2), not
         counting the claims about object ``besides`` (one query over the claims)."""

@@ -72,7 +72,7 @@ def beliefs(ctx: AppContext) -> dict[tuple[str, str], dict[str, Any]]:
 
 
 # -- claims and prediction -------------------------------------------------------------------------
-def test_a_claim_writes_that_agents_prior_for_every_object(ctx: AppContext) -> None:
+def test_a_first_claim_about_an_object_writes_every_agents_priors(ctx: AppContext) -> None:
     names = small_world(ctx, 8)
     ctx.now = NOW + 5
     instruct.add_claim(ctx, "o0", "alexis")
@@ -81,11 +81,14 @@ def test_a_claim_writes_that_agents_prior_for_every_object(ctx: AppContext) -> N
         alexis, xuan = got[(name, "alexis")], got[(name, "xuan")]
         assert alexis["prior"] is not None and 0 < alexis["prior"] < 1
         assert alexis["prior_source"] in ("prediction", "base-rate") and alexis["prior_time"] == NOW + 5
-        assert xuan["prior_source"] == "base-rate"  # no claim about xuan: the calibrated prior
-        assert xuan["prior"] == pytest.approx(0.25) and xuan["prior_time"] == NOW
+        # xuan said nothing of o0, which alexis claimed: what that silence says is learned too
+        assert xuan["prior_source"] == "prediction" and xuan["prior_time"] == NOW + 5
     assert got[("o0", "alexis")]["p"] == 1.0 and got[("o0", "alexis")]["source"] == "claim"
     near, far = got[("o1", "alexis")]["prior"], got[("o7", "alexis")]["prior"]
     assert near > far  # o1 is next to the claimed o0
+    assert got[("o0", "xuan")]["prior"] < got[("o1", "xuan")]["prior"] < 0.25  # lowest where silent
+    instruct.add_claim(ctx, "o0", "xuan", negated=True)  # said outright: xuan's claim
+    assert beliefs(ctx)[("o0", "xuan")]["source"] == "claim"
 
 
 def count_writes(ctx: AppContext) -> list[tuple[str, int]]:
@@ -107,8 +110,9 @@ def count_writes(ctx: AppContext) -> list[tuple[str, int]]:
 @pytest.mark.parametrize("n", [5, 60])
 def test_priors_are_written_in_bulk(ctx: AppContext, n: int) -> None:
     small_world(ctx, n)
-    calls = count_writes(ctx)
     instruct.add_claim(ctx, "o0", "alexis")
+    calls = count_writes(ctx)
+    instruct.add_claim(ctx, "o0", "alexis", p=0.9)  # about an object a claim is already about
     # the claim in one upsert; the agent's priors of every object rewritten as one packed chunk
     assert len(calls) <= 4, calls
     assert sum(k for t, k in calls if t == "ownership") == 1, calls
@@ -129,7 +133,7 @@ def test_an_agent_no_claim_says_owns_anything_borrows_recency_and_then_stops(ctx
     assert got[("o5", "xuan")]["prior"] > got[("o6", "xuan")]["prior"]
     instruct.add_claim(ctx, "o1", "xuan")
     calls = count_writes(ctx)
-    instruct.add_claim(ctx, "o4", "alexis")
+    instruct.add_claim(ctx, "o0", "alexis", p=0.9)  # an object both were told about: no new silence
     assert [k for t, k in calls if t == "priors"] == [1, 1], calls  # alexis' chunk alone
 
 
@@ -431,7 +435,8 @@ def test_an_agent_without_claims_has_the_calibrated_prior_as_in_the_mind(ctx: Ap
     from ownctl.config import PredictConfig
 
     small_world(ctx, 3)
-    instruct.add_claim(ctx, "o0", "alexis")
+    # alexis only says what she does not own: such claims say nothing of xuan's silence
+    instruct.add_claim(ctx, "o0", "alexis", negated=True)
     with ctx.read() as tx:
         own, sources = stored_beliefs(tx, induction_belief)
         xuan = [a.name for a in tx.world.agents()].index("xuan")

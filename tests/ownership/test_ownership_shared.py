@@ -84,8 +84,12 @@ def test_a_model_fitted_around_an_offset_corrects_it_and_needs_it_to_predict() -
 
 
 def _mind(seed: int, share: bool, step: float = PredictConfig().share_step) -> tuple[Mind, np.ndarray]:
+    """A Mind of a paper world; what silence says is off (silence_step 0): these tests are about
+    what borrowers learn from the lenders' claims alone (tests/ownership/test_ownership_silence.py
+    and tests/mind/test_mind_silence.py are about silence)."""
     world = paper_blocks_world(np.random.default_rng(seed))
-    settings = Settings(predict=replace(PredictConfig(), share_recency=share, share_step=step))
+    settings = Settings(predict=replace(PredictConfig(), share_recency=share, share_step=step,
+                                        silence_step=0.0))
     mind = Mind(world.agents, list(world.objects), world.areas, settings, Switches())
     return mind, world.true_ownership()
 

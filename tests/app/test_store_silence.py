@@ -1,0 +1,80 @@
+"""Law: what silence weighs moves the same in a store as in a Mind kept in memory.
+
+A claim about one agent loads only that agent's predictor when every agent owns something else
+(ownctl/app/mindstore.py, ``refit_focus``), with the store's count of the other agents' claims. What
+an agent's silence about a claimed object weighs is chosen on every agent's claims (architecture
+section 5): when a claim moves it, or is the first about its object while silence weighs, that
+partial load cannot refit the silent agents, so the claim is carried out again on the whole Mind.
+Owners say "that's mine", then some say what is not theirs: after every claim the store's priors
+equal those of a Mind told the same claims, and the partial loads that met a move wrote nothing.
+"""
+
+from __future__ import annotations
+
+import contextlib
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+from ownctl.app import instruct, mindstore, worldfile
+from ownctl.app.context import AppContext
+from ownctl.mind import Mind, WholeMindNeeded
+from ownctl.world.generator import paper_blocks_world
+from ownctl.world.spec import to_toml, world_to_dict
+from tests.app.test_store_pooled_scale import stored_priors
+
+START = 10_000.0
+
+
+def test_claims_that_move_what_silence_weighs_give_the_store_the_mind_s_priors(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    world = paper_blocks_world(np.random.default_rng(4), 12)
+    path = tmp_path / "w.toml"
+    path.write_text(to_toml(world_to_dict(world)), encoding="utf-8")
+    db = str(tmp_path / "s.db")
+    ctx = AppContext(db, now=START)
+    ctx.store(create=True)
+    worldfile.load(ctx, str(path))
+    ctx.close()
+    mind = Mind(world.agents, list(world.objects), sorted(world.areas, key=lambda a: a.name), now=START)
+    loads: list[tuple[str, bool]] = []  # (object, whether a partial load met a move)
+    partial = mindstore.changing
+
+    def spying(*args: Any, **kwargs: Any) -> Any:
+        try:
+            with partial(*args, **kwargs) as out:
+                yield out
+            if kwargs.get("agents") is not None:
+                loads.append((args[1]["object"], False))
+        except WholeMindNeeded:
+            loads.append((args[1]["object"], True))
+            raise
+
+    monkeypatch.setattr(mindstore, "changing", contextlib.contextmanager(spying))
+    truth = world.true_ownership() >= 0.5
+    said: list[tuple[int, str, float, bool]] = []
+    for i in range(len(world.objects)):  # owners say "that's mine"; now and then one says "not mine"
+        if i % 3 == 0:
+            said += [(i, a, 1.0, True) for j, a in enumerate(world.agents) if not truth[i, j]][:1]
+        else:
+            said += [(i, a, 1.0, False) for j, a in enumerate(world.agents) if truth[i, j]]
+    said += [(i, a, 1.0, True) for i in range(len(world.objects)) if i % 3  # then others deny them
+             for j, a in enumerate(world.agents) if not truth[i, j] and truth[i].any()]
+    now, weights = START, []
+    for i, agent, p, negated in said:
+        now += 1.0
+        ctx = AppContext(db, now=now)
+        try:
+            instruct.add_claim(ctx, world.objects[i].name, agent, p, negated=negated)
+        finally:
+            ctx.close()
+        mind.at(now)
+        mind.claim(i, agent, p, negated=negated)
+        mind.refresh()
+        weights.append(mind.silence)
+        np.testing.assert_allclose(stored_priors(db, now), mind.prior, rtol=0, atol=1e-12)
+    assert len(set(weights)) >= 3, weights  # silence weighed differently as the claims came
+    assert any(met for _, met in loads), "no claim moved silence through a partial load"
+    assert any(not met for _, met in loads), "no claim went through a partial load"
