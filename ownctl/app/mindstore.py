@@ -562,7 +562,7 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     for row in tx.knowledge.rules():
         mind.restore_rule(row.action, rule_of(row.text, row.origin),
                           RuleInfo(row.origin, dict(row.provenance or {})))
-    mind.restore_silence(float(stored.get(SILENCE) or 0.0), others)
+    mind.restore_silence(stored_silence(stored), others)
     out = Stored(mind, {r.name: r.id for r in rows}, agent_ids, writable)
     # compare with what the store really holds (NULL priors and posteriors are written on save)
     held = np.flatnonzero(~np.isnan(stored_post).all(axis=1))
@@ -580,6 +580,12 @@ def stored_scale(settings: dict[str, Any]) -> int:
     return int(settings.get(SCALE) or 0)
 
 
+def stored_silence(settings: dict[str, Any]) -> float:
+    """What an agent's silence weighs in the stored priors (:attr:`Mind.silence`), from the
+    store's settings."""
+    return float(settings.get(SILENCE) or 0.0)
+
+
 def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:
     """The agents whose predictors a claim or touch about ``obj`` by ``agents`` may refit, for a
     partial load (:func:`load`), or None (load every agent) when an agent's predictor borrows from
@@ -589,7 +595,7 @@ def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:
     first one; ownctl/ownership/silence.py). (Stores always share recency: the core's
     ``PredictConfig.share_recency`` has no store setting.)"""
     besides = tx.things.object(obj).id
-    if float(tx.meta.settings().get(SILENCE) or 0.0) > 0 and \
+    if stored_silence(tx.meta.settings()) > 0 and \
             all(b.claim_p is None for b in tx.beliefs.held([besides])):
         return None  # a first claim about the object: every silent agent's predictor learns of it
     owning = tx.beliefs.agents_owning(besides)

@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 from ownctl.app.beliefs import decision_belief
 from ownctl.app.context import AppContext, Done, use_case
-from ownctl.app.mindstore import changing, load, rule_of, stored_scale
+from ownctl.app.mindstore import changing, load, rule_of, stored_scale, stored_silence
 from ownctl.app.settings import probability, to_config
 from ownctl.errors import OwnctlError, UnknownName
 from ownctl.humanize import plural
@@ -22,7 +22,9 @@ if TYPE_CHECKING:
 def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str, Any]:
     """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}],
     "percept_scale"}``, likeliest first; ``p`` and ``source`` are the decision belief;
-    ``percept_scale`` is :func:`percept_scale`. With ``coverage``, each owner row also has
+    ``percept_scale`` is :func:`percept_scale`; ``silence`` what an agent's silence about an
+    object others made claims about weighs, and ``silent`` the agents silent about this one while
+    it weighs (docs/architecture.md, section 5). With ``coverage``, each owner row also has
     ``"conformal"``: its split-conformal set over {owns, does not own} (docs/asking.md, section 7),
     and ``"claims_needed"`` says how many claimed objects an agent needs before its sets can leave
     a label out."""
@@ -34,8 +36,13 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
                 raise OwnctlError(f"{obj!r} is an agent, not an object; the objects it owns: ownctl owners "
                                   f"--agent {obj}", exc.valid) from None
             raise
-        data: dict[str, Any] = {"object": obj, "owners": owner_rows(tx, object_id),
-                                "percept_scale": percept_scale(tx)}
+        rows = owner_rows(tx, object_id)
+        weight = stored_silence(tx.meta.settings())
+        spoken = any(r["claim"] is not None for r in rows)
+        data: dict[str, Any] = {"object": obj, "owners": rows, "percept_scale": percept_scale(tx),
+                                "silence": weight,
+                                "silent": sorted(r["agent"] for r in rows if r["claim"] is None)
+                                if weight > 0 and spoken else []}
         if coverage is not None:
             from ownctl.mind.conformal import check_coverage, claims_needed, prediction_sets
 

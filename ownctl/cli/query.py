@@ -104,6 +104,10 @@ def owners(
             note = (f"{', '.join(few)}: fewer than {data['claims_needed']} claimed objects, too few for "
                     f"coverage {coverage:g}; their sets hold both labels unless claimed")
     shown = table(f"owners of {obj}", columns, cells)
+    if data["silent"]:
+        note = "\n".join(filter(None, [note, (
+            f"{', '.join(data['silent'])} said nothing of {obj} while others made claims about it: "
+            f"their silence weighs {data['silence']:g} (people say \"mine\", seldom \"not mine\")")]))
     reach = data["percept_scale"]
     if reach < 1 and any(o["source"] == "prediction" for o in data["owners"]):
         note = "\n".join(filter(None, [note, (

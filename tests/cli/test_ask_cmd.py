@@ -264,3 +264,16 @@ def test_owners_says_when_the_claims_show_that_percepts_tell_little(ownctl: Ownc
     assert result.stderr.strip().splitlines() == [
         "ownctl: 'agent1' is an agent, not an object; the objects it owns: ownctl owners --agent agent1"]
     assert ownctl.digest() == before
+
+
+def test_owners_names_the_agents_silent_about_a_claimed_object(world: Ownctl) -> None:
+    """After "that's mine" by alexis, xuan's silence about the wallet weighs, and ``owners`` says so
+    (and gives it in --json); about an object nobody spoke of it says nothing of silence."""
+    world("claim", "wallet", "alexis")
+    data = world.json("owners", "wallet")
+    assert data["silence"] > 0 and data["silent"] == ["xuan"]
+    shown = world("owners", "wallet").stdout
+    assert "xuan said nothing of wallet while others made claims about it: their silence weighs" in shown
+    assert world.json("owners", "can")["silent"] == [] and "said nothing" not in world("owners", "can").stdout
+    world("claim", "wallet", "xuan", "--not")  # said outright: nobody is silent any more
+    assert world.json("owners", "wallet")["silent"] == []
