@@ -21,6 +21,7 @@ from ownctl.app.beliefs import induction_belief
 from ownctl.app.context import AppContext
 from ownctl.mind import Mind, WholeMindNeeded
 from ownctl.world.generator import scattered_world
+from ownctl.world.model import World
 from ownctl.world.spec import to_toml, world_to_dict
 
 START = 10_000.0
@@ -41,17 +42,22 @@ def stored_priors(db: str, now: float) -> np.ndarray:
     return prior
 
 
-def test_claims_that_move_the_shared_scale_give_the_store_the_mind_s_priors(
-        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
-    world = scattered_world(np.random.default_rng(SEED), 8)
-    path = tmp_path / "w.toml"
+def stored_world(world: World, folder: Path) -> tuple[str, Mind]:
+    """A new store in ``folder`` holding ``world`` (loaded at START), and a Mind of the same world."""
+    path = folder / "w.toml"
     path.write_text(to_toml(world_to_dict(world)), encoding="utf-8")
-    db = str(tmp_path / "s.db")
+    db = str(folder / "s.db")
     ctx = AppContext(db, now=START)
     ctx.store(create=True)
     worldfile.load(ctx, str(path))
     ctx.close()
-    mind = Mind(world.agents, list(world.objects), sorted(world.areas, key=lambda a: a.name), now=START)
+    return db, Mind(world.agents, list(world.objects), sorted(world.areas, key=lambda a: a.name), now=START)
+
+
+def test_claims_that_move_the_shared_scale_give_the_store_the_mind_s_priors(
+        tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    world = scattered_world(np.random.default_rng(SEED), 8)
+    db, mind = stored_world(world, tmp_path)
     retried: list[str] = []
     partial = mindstore.changing
 

@@ -18,27 +18,17 @@ from typing import Any
 import numpy as np
 import pytest
 
-from ownctl.app import instruct, mindstore, worldfile
+from ownctl.app import instruct, mindstore
 from ownctl.app.context import AppContext
-from ownctl.mind import Mind, WholeMindNeeded
+from ownctl.mind import WholeMindNeeded
 from ownctl.world.generator import paper_blocks_world
-from ownctl.world.spec import to_toml, world_to_dict
-from tests.app.test_store_pooled_scale import stored_priors
-
-START = 10_000.0
+from tests.app.test_store_pooled_scale import START, stored_priors, stored_world
 
 
 def test_claims_that_move_what_silence_weighs_give_the_store_the_mind_s_priors(
         tmp_path: Path, monkeypatch: pytest.MonkeyPatch) -> None:
     world = paper_blocks_world(np.random.default_rng(4), 12)
-    path = tmp_path / "w.toml"
-    path.write_text(to_toml(world_to_dict(world)), encoding="utf-8")
-    db = str(tmp_path / "s.db")
-    ctx = AppContext(db, now=START)
-    ctx.store(create=True)
-    worldfile.load(ctx, str(path))
-    ctx.close()
-    mind = Mind(world.agents, list(world.objects), sorted(world.areas, key=lambda a: a.name), now=START)
+    db, mind = stored_world(world, tmp_path)
     loads: list[tuple[str, bool]] = []  # (object, whether a partial load met a move)
     partial = mindstore.changing
 
