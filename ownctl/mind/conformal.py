@@ -53,21 +53,25 @@ FOLDS = 10
 
 def loo_scores(mind: Mind, agent: str) -> np.ndarray:
     """Held-out scores ``1 - P(claimed label)`` over the agent's claimed objects (object order):
-    ``P`` the agent's predictor refitted without the claim, leave-one-out up to ``FOLDS`` claims;
+    ``P`` the agent's predictor as the Mind fits it (its rows, scale and silence,
+    :meth:`Mind.fit_inputs`) refitted without the claim, leave-one-out up to ``FOLDS`` claims;
     beyond, without the claim's fold, the claims split into ``FOLDS`` interleaved folds (claim
     ``k`` in fold ``k mod FOLDS``; cross-conformal), so that a store with hundreds of claims per
     agent costs ``FOLDS`` refits, not one per claim."""
-    X, known = mind.features(agent)
     j = mind.agents.index(agent)
-    idx = np.flatnonzero(known)
+    idx = np.flatnonzero(~np.isnan(mind.claims[:, j]))
     claims = mind.claims[idx, j]
     folds = np.arange(len(idx)) % max(min(FOLDS, len(idx)), 1)
     out = np.empty(len(idx))
+    cfg = mind.settings.predict
     for fold in range(min(FOLDS, len(idx))):
-        held, rest = folds == fold, folds != fold
-        offset = mind.borrowed_term(agent, claims[rest], X[:, -1])  # as the Mind's own predictor borrows
-        model = KernelOwnershipModel(mind.settings.predict).fit(
-            X[idx[rest]], claims[rest], None if offset is None else offset[idx[rest]])
+        held = folds == fold
+        without = np.zeros(len(mind.objects), dtype=bool)
+        without[idx[held]] = True
+        # as the Mind's own predictor learns: its rows, borrowed term, scale and silence
+        X, rows, targets, offset = mind.fit_inputs(agent, without)
+        model = KernelOwnershipModel(cfg).fit(X[rows], targets, None if offset is None else offset[rows],
+                                             cfg.scales[mind.scale], kappa=mind.silence)
         p = model.predict_proba(X[idx[held]], None if offset is None else offset[idx[held]])
         out[held] = np.where(claims[held] >= 0.5, 1.0 - p, p)
     return out

@@ -573,19 +573,31 @@ class Mind:
             self._lending[key] = shared
         return shared
 
+    def fit_inputs(self, agent: str, without: np.ndarray | None = None
+                   ) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray | None]:
+        """What the agent's predictor learns from: the feature rows of every object (n, d), the
+        rows it is fitted on (n,), their targets (the claims; NaN where the agent is silent about
+        an object some claim is about, while silence weighs) and the borrowed term over every
+        object (None: none). ``without`` (n,): objects the agent's rows leave out, claimed or
+        silent, as objects nobody spoke of (the conformal scores, ownctl/mind/conformal.py, score
+        claimed objects as the predictions they calibrate are made: of unclaimed objects)."""
+        j = self._column(agent)
+        X, known = self.features(agent)
+        if without is not None:
+            known = known & ~without
+        offset = self.borrowed_term(agent, self.claims[known, j], X[:, -1])
+        rows = known
+        if self.silence > 0:  # the agent's silence about objects others made claims about
+            rows = known | (self.census()[0] if self._examined_rows is None else self._examined_rows)
+            if without is not None:
+                rows = rows & ~without
+        return X, rows, np.where(known, self.claims[:, j], np.nan)[rows], offset
+
     def _fit(self, agent: str) -> _Fit | None:
         """The agent's predictor fitted at every scale (None while prediction is off)."""
         if not self.switches.prediction:
             return None
-        j = self._column(agent)
-        X, known = self.features(agent)
-        own = self.claims[known, j]
-        offset = self.borrowed_term(agent, own, X[:, -1])
-        rows = known
-        if self.silence > 0:  # the agent's silence about objects others made claims about
-            examined = self.census()[0] if self._examined_rows is None else self._examined_rows
-            rows = known | examined
-        targets = np.where(known, self.claims[:, j], np.nan)[rows]
+        X, rows, targets, offset = self.fit_inputs(agent)
         models = fit_scales(X[rows], targets, None if offset is None else offset[rows], self.settings.predict,
                             self.silence)
         return _Fit(models, X, offset)

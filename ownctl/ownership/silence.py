@@ -15,11 +15,17 @@ depend on their answer (``c1 = c0``: the paper's protocol, where every agent's o
 claimed object is stated), "probably not mine" when only owners speak (``c0 = 0``).
 
 ``c1`` and ``c0`` are estimated over the whole household (how its people speak, not one agent's
-habit): with ``T`` examined pairs, ``N+`` the claims' total weight for "owns" and ``N-`` for "does
-not own", and ``pi`` the prior probability that an agent owns an object (``PredictConfig.base_rate``),
-``c1 = N+ / (pi T)`` and ``c0 = N- / ((1 - pi) T)``, each at most 1. ``kappa`` is rounded down to a
-multiple of ``silence_step`` (a claim moves it only now and then, and every predictor follows it)
-and kept at most ``silence_max``: silence is never taken as a statement.
+habit). Of its ``T`` examined pairs, ``N+`` (the claims' total weight for "owns") were claimed as
+owned, each with probability ``pi c1``, ``N-`` as not owned, each with probability ``(1 - pi) c0``,
+and ``U = T - N+ - N-`` are silent, each with probability ``1 - pi c1 - (1 - pi) c0``, where ``pi``
+is the prior probability that an agent owns an object (``PredictConfig.base_rate``). With a uniform
+prior on ``c1`` and ``c0``, their posterior means (on a grid) give ``kappa``; the likelihood of a
+silence is linear in them, so the means are what one silence weighs under their uncertainty. When
+every pair of every examined object is claimed (``U = 0``: the paper's protocol), the posterior
+says nothing of silence and ``kappa`` is 0, whatever share of the claims say "owns"; when only
+owners speak, ``c0`` is near 0 and ``kappa`` near ``c1``. ``kappa`` is rounded down to a multiple
+of ``silence_step`` (a claim moves it only now and then, and every predictor follows it) and kept
+at most ``silence_max``: silence is never taken as a statement.
 
 The row terms are for a Newton fit on logits ``f``: the loss ``-log(1 - kappa sigmoid(f))``, its
 gradient ``s - q`` with ``q = s (1 - kappa) / (1 - kappa s)`` (the probability that a silent
@@ -34,24 +40,34 @@ import numpy as np
 
 from ownctl.config import PredictConfig
 
+#: The grid of each selection probability, ``c1`` and ``c0`` (cell midpoints of [0, 1]).
+_GRID = (np.arange(200) + 0.5) / 200
+
 
 def silence_weight(examined: int, agents: int, owned: float, not_owned: float,
                    cfg: PredictConfig | None = None) -> float:
     """``kappa`` for a household whose claims are about ``examined`` objects, with ``agents``
     agents, the claims' total weight ``owned`` for "owns" and ``not_owned`` for "does not own"
-    (module docstring); 0 without claims or with ``silence_step`` 0."""
+    (module docstring); 0 without silent pairs or with ``silence_step`` 0."""
     cfg = cfg or PredictConfig()
-    pairs = examined * agents
-    if pairs <= 0 or cfg.silence_step <= 0:
+    silent = examined * agents - owned - not_owned
+    if silent <= 1e-9 or cfg.silence_step <= 0:
         return 0.0
-    prior = cfg.base_rate
-    c1 = min(1.0, owned / (prior * pairs))
-    c0 = min(1.0, not_owned / ((1.0 - prior) * pairs))
-    if c0 >= 1.0:
-        return 0.0
-    kappa = max(0.0, (c1 - c0) / (1.0 - c0))
+    mean1, mean0 = selection_means(owned, not_owned, silent, cfg.base_rate)
+    kappa = max(0.0, (mean1 - mean0) / (1.0 - mean0))
     steps = math.floor(kappa / cfg.silence_step + 1e-9)
     return float(min(cfg.silence_max, round(steps * cfg.silence_step, 9)))
+
+
+def selection_means(owned: float, not_owned: float, silent: float, prior: float) -> tuple[float, float]:
+    """The posterior means of ``c1`` and ``c0`` under a uniform prior, given ``owned`` pairs
+    claimed as owned, ``not_owned`` as not owned and ``silent`` pairs unclaimed, an agent owning a
+    pair with probability ``prior`` (module docstring; a 200 x 200 grid of cell midpoints)."""
+    c1, c0 = _GRID[:, None], _GRID[None, :]
+    log_post = owned * np.log(c1) + not_owned * np.log(c0) + silent * np.log1p(-prior * c1 - (1 - prior) * c0)
+    weight = np.exp(log_post - log_post.max())
+    weight /= weight.sum()
+    return float((weight * c1).sum()), float((weight * c0).sum())
 
 
 def census(claims: np.ndarray) -> tuple[np.ndarray, float, float]:

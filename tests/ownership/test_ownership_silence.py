@@ -3,7 +3,8 @@
 Oracles: the silence loss's gradient and curvature against finite differences; the fit with silent
 rows against the stationary point of its stated objective; its Laplace evidence against numerical
 integration of the marginal likelihood; the household's weight ``kappa`` against its definition on
-counts (0 when claims do not depend on their answer, the most when only owners speak).
+counts (the posterior means of the selection probabilities against an integral done by hand; 0 when
+every pair of a claimed object is claimed, the most when only owners speak).
 """
 
 from __future__ import annotations
@@ -15,7 +16,14 @@ from hypothesis import strategies as st
 
 from ownctl.config import PredictConfig
 from ownctl.ownership.predict import KernelOwnershipModel, _loss, _prior_term, _system, rbf_kernel
-from ownctl.ownership.silence import census, silence_weight, silent_curvature, silent_loss, silent_target
+from ownctl.ownership.silence import (
+    census,
+    selection_means,
+    silence_weight,
+    silent_curvature,
+    silent_loss,
+    silent_target,
+)
 
 KAPPAS = st.floats(0.05, 0.95)
 
@@ -105,6 +113,14 @@ def test_laplace_evidence_with_a_silence_is_close_to_the_integrated_one(kappa: f
     assert model.evidence_ == pytest.approx(_integrated(X, p, cfg, kappa), abs=0.3)
 
 
+def test_the_selection_means_are_the_posterior_means() -> None:
+    # one pair claimed as owned, one silent, prior 1/4: the posterior c1 (1 - c1/4 - 3 c0/4) on
+    # the unit square has means 7/11 and 4/11 (integrated by hand), so kappa = 3/7
+    mean1, mean0 = selection_means(1.0, 0.0, 1.0, 0.25)
+    assert mean1 == pytest.approx(7 / 11, abs=1e-4) and mean0 == pytest.approx(4 / 11, abs=1e-4)
+    assert silence_weight(1, 2, 1.0, 0.0) == 0.4  # 3/7 rounded down to a step of 0.2
+
+
 def test_kappa_is_nothing_when_claims_do_not_depend_on_their_answer() -> None:
     # 10 objects, 4 agents, every pair stated: a quarter owned, as the prior expects
     assert silence_weight(10, 4, owned=10.0, not_owned=30.0) == 0.0
@@ -121,15 +137,13 @@ def test_kappa_is_the_most_when_only_owners_speak() -> None:
     assert 0 < some < cfg.silence_max and steps == pytest.approx(round(steps))
 
 
-@given(st.integers(1, 30), st.integers(1, 6), st.floats(0, 1), st.floats(0, 1), st.floats(0, 1))
-def test_kappa_grows_with_owners_claims_and_falls_with_denials(examined: int, agents: int, a: float,
-                                                               b: float, extra: float) -> None:
-    pairs = examined * agents
-    owned, not_owned = a * pairs * 0.5, b * pairs * 0.5
-    base = silence_weight(examined, agents, owned, not_owned)
+@given(st.integers(0, 20), st.integers(0, 20), st.integers(1, 20))
+def test_kappa_grows_with_owners_claims_and_falls_with_denials(owned: int, denied: int, silent: int) -> None:
+    # one agent, so that each examined object is one pair: owned + denied claimed, silent not
+    base = silence_weight(owned + denied + silent, 1, owned, denied)
     assert 0.0 <= base <= PredictConfig().silence_max
-    assert silence_weight(examined, agents, owned + extra, not_owned) >= base
-    assert silence_weight(examined, agents, owned, not_owned + extra) <= base
+    assert silence_weight(owned + denied + silent + 1, 1, owned + 1, denied) >= base
+    assert silence_weight(owned + denied + silent + 1, 1, owned, denied + 1) <= base
 
 
 def test_the_census_counts_examined_objects_and_the_claims_weight() -> None:
