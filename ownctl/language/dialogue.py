@@ -52,7 +52,8 @@ _GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"
 
 @GRAMMAR.rule(
     "question",
-    _QUESTION_LEAD + r"whose (?:(?P<noun><NAME>) )?(?:is|are) <OBJ>",
+    _QUESTION_LEAD + r"whose (?:(?P<noun><NAME>) )?(?:is|are) <OBJ>(?P<guess> (?:mine|<NAME> 's)"
+                     r"(?: or (?:mine|<NAME> 's))*)?",
     _QUESTION_LEAD + r"who (?:owns|is the owner of|has|is the owner of|are the owners of) <OBJ>",
     _QUESTION_LEAD + r"who does <OBJ> belong to",
     _QUESTION_LEAD + r"to whom does <OBJ> belong",
@@ -64,10 +65,12 @@ _GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"
     _QUESTION_LEAD + r"whose (?:(?P<noun2><NAME>) )?<OBJ> (?:is|are)",
     _QUESTION_LEAD + r"who <OBJ> belongs to",
     _QUESTION_LEAD + r"who owns <OBJ>",
+    _QUESTION_LEAD + r"(?:whether|if) <OBJ> (?:is|are) (?:mine|<NAME> 's|owned by (?:me|<NAME>))",
+    _QUESTION_LEAD + r"(?:whether|if) (?:i|<NAME>) (?:owns?) <OBJ>",
 )
 def ask_owner(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Whose is this?", "Who owns that?", "Who does this belong to?", "Is this Jake's?", "Do you
-    know whose wallet this is?"."""
+    know whose wallet this is?", "Whose keys are these, Jake's?" (a guess asks, it claims nothing)."""
     noun = group(m, "noun") or group(m, "noun2")
     obj = r.obj(noun) if noun and r.is_object(noun) else r.obj(m["obj"])
     return (AskOwner(obj),)

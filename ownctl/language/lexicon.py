@@ -130,6 +130,13 @@ TIME_WORDS = frozenset({
     "a while ago", "recently", "already", "just now", "the other day", "a minute ago", "before",
 })
 
+#: Said after a statement or a question without changing it: afterthoughts ("it's still mine
+#: though") and question tags ("who owns this, do you know?").
+AFTERTHOUGHTS = frozenset({
+    "though", "anyway", "after all", "all the same", "do you know", "any idea", "if you know",
+    "can you tell me", "do you remember",
+})
+
 #: Adjectives that may describe an object without naming it ("the little mug").
 ADJECTIVES = frozenset({
     "little", "small", "big", "large", "old", "new", "empty", "full", "dirty", "clean", "broken",

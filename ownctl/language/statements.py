@@ -303,17 +303,24 @@ _GIVE = r"(?:just |have |has |had |will |already )?(?:gave|give|gives|given|givi
         r"selling|handed|hand|hands|handing|passed|pass|passes|passing|donated|traded)(?: over)?"
 
 
+_LENT = r"(?:have |has |had )?(?:lent|loaned|lend|lends)"
+_LENDER = rf"(?P<owner>i|we|he|she|they|{_WHO}<NAME>)"
+_BORROWER = r"(?P<to>me|us|him|her|them|<NAME>)"
+
+
 @GRAMMAR.rule("claim",
-              rf"(?P<owner>he|she|they|{_WHO}<NAME>) (?:has |had )?(?:lent|loaned|lends) (?:me|us) <OBJ>",
-              rf"(?P<owner>he|she|they|{_WHO}<NAME>) (?:has |had )?(?:lent|loaned|lends) <OBJ> to (?:me|us)",
+              rf"{_LENDER} {_LENT} {_BORROWER} <OBJ>",
+              rf"{_LENDER} {_LENT} <OBJ> to {_BORROWER}",
               r"(?:i|we) (?:am |are |have |had )?(?:borrowed|borrowing|borrow) <OBJ> from "
               r"(?P<owner>him|her|them|<NAME>)",
               r"<OBJ> (?:is|was|are|were) (?:borrowed|on loan) from (?P<owner>him|her|them|<NAME>)")
 def claim_lent(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"Mia lent me the book", "I borrowed the pen from Jake", "The scarf is on loan from Xuan": the
-    lender still owns it (who holds it now is not said to own it)."""
-    owner = r.owner(m["owner"])
-    if owner in (ANY, NOBODY) or owner == r.ctx.speaker:
+    """"Mia lent me the book", "I lent Casey my phone", "I borrowed the pen from Jake", "The scarf
+    is on loan from Xuan": the lender still owns it (who holds it now is not said to own it)."""
+    owner = r.owner("me" if m["owner"] in ("i", "we") else m["owner"])
+    to = group(m, "to")
+    holder = r.ctx.speaker if to is None else r.owner("me" if to in ("me", "us") else to)
+    if owner in (ANY, NOBODY) or owner == holder:
         return None
     return (Claim(r.obj(m["obj"]), owner),)
 

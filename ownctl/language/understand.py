@@ -41,6 +41,7 @@ from ownctl.language.grammar import GrammarRule, first_match
 from ownctl.language.instructions import Claim, Instruction, Introduce, NormInstruction, Permission, Skip
 from ownctl.language.lexicon import (
     ACTION_PHRASES,
+    AFTERTHOUGHTS,
     ANYONE_WORDS,
     ASIDES,
     CLASS_HEADS,
@@ -82,7 +83,7 @@ _DISCOURSE = re.compile(rf"^(?:{alternation(DISCOURSE)} )+")
 _HEDGE = alternation(tuple(HEDGES))
 _LEAD_HEDGE = re.compile(rf"^(?P<h>{_HEDGE}) ")
 _TAIL_HEDGE = re.compile(rf" (?P<h>{_HEDGE})(?: so)?$")
-_TIME_TAIL = re.compile(rf" {alternation(TIME_WORDS)}$")
+_TIME_TAIL = re.compile(rf" {alternation(TIME_WORDS | AFTERTHOUGHTS)}$")
 #: Words that carry meaning: a piece holding one is never skipped.
 _CONTENT = frozenset(
     {w for phrase in ACTION_PHRASES for w in phrase.split() if w not in ("me", "up", "out", "down")}

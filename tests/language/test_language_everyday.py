@@ -475,3 +475,17 @@ def test_a_why_question_joined_to_another_sentence_keeps_both() -> None:
         "explain pickUp cap", "check trash ball"}
     said = understand("Why, and why not?", CTX)
     assert said.texts() == ("explain",) and said.reply.count("explain") == 1
+
+
+@pytest.mark.parametrize(("utterance", "about", "want"), [
+    ("I lent Bo my hat.", None, {"claim hat olga"}),
+    ("Jake has lent the ball to Casey", None, {"claim ball jake"}),
+    ("It's still Bo's though.", "cap", {"claim cap bo"}),
+    ("Who owns the kettle, any idea?", None, {"owners kettle"}),
+    ("Can I ask whether the glove is Casey's?", None, {"owners glove"}),
+    ("I wonder if Xuan owns the ball", None, {"owners ball"}),
+    ("Whose hat is this, Bo's or Jake's?", "hat", {"owners hat"}),  # a guess asks, it claims nothing
+])
+def test_lending_afterthoughts_question_tags_and_guesses(utterance: str, about: str | None,
+                                                        want: set[str]) -> None:
+    assert texts(utterance, replace(CTX, about=about)) == want
