@@ -73,10 +73,18 @@ def _claimed_names(tx: Tx, obj: str, agent: str) -> None:
         tx.things.object(obj), tx.world.agent(agent)
     except UnknownName as exc:
         agents = {a.name for a in tx.world.agents()}
-        if obj in agents and agent not in agents and any(o.name == agent for o in tx.things.objects()):
+        if obj in agents and agent not in agents and _is_object(tx, agent):
             raise OwnctlError(f"{obj!r} is an agent and {agent!r} an object: the object comes first, "
                               f"ownctl claim {agent} {obj}", exc.valid) from None
         raise
+
+
+def _is_object(tx: Tx, name: str) -> bool:
+    try:
+        tx.things.object(name)
+    except UnknownName:
+        return False
+    return True
 
 
 @use_case

@@ -628,9 +628,9 @@ def refitting(ctx: AppContext, payload: dict[str, Any], change: Callable[[Tx, Mi
                actor: str | None = None, agents: Sequence[str] | None = None) -> T:
     """:func:`changing` for an instruction that refits only ``agents``' predictors (see
     :func:`refit_focus`; None: every agent), running ``change`` in it and returning what it
-    returns. When the change moves the scale every predictor shares
-    (:class:`ownctl.mind.core.WholeMindNeeded`), nothing was written and it runs again on the
-    whole Mind, as a Mind kept in memory would refit every agent."""
+    returns. When the change moves what every predictor shares, the scale or the weight of silence,
+    or gives an agent not loaded a silent row (:class:`ownctl.mind.core.WholeMindNeeded`), nothing
+    was written and it runs again on the whole Mind, as a Mind kept in memory would refit them."""
     if agents is not None:
         try:
             with changing(ctx, payload, actor=actor, agents=agents) as (tx, mind):

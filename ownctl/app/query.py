@@ -37,9 +37,10 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
                                   f"--agent {obj}", exc.valid) from None
             raise
         rows = owner_rows(tx, object_id)
-        weight = stored_silence(tx.meta.settings())
+        settings = tx.meta.settings()
+        weight = stored_silence(settings)
         spoken = any(r["claim"] is not None for r in rows)
-        data: dict[str, Any] = {"object": obj, "owners": rows, "percept_scale": percept_scale(tx),
+        data: dict[str, Any] = {"object": obj, "owners": rows, "percept_scale": percept_scale(settings),
                                 "silence": weight,
                                 "silent": sorted(r["agent"] for r in rows if r["claim"] is None)
                                 if weight > 0 and spoken else []}
@@ -55,11 +56,10 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
         return data
 
 
-def percept_scale(tx: Tx) -> float:
+def percept_scale(settings: dict[str, Any]) -> float:
     """How far percepts may move the stored predictions, as a fraction of the full reach: the
     scale every agent's predictor uses, chosen on all agents' claims (docs/architecture.md,
-    section 5)."""
-    settings = tx.meta.settings()
+    section 5), from the store's ``settings``."""
     return to_config(settings).predict.scales[stored_scale(settings)]
 
 

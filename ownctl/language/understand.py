@@ -83,7 +83,8 @@ _DISCOURSE = re.compile(rf"^(?:{alternation(DISCOURSE)} )+")
 _HEDGE = alternation(tuple(HEDGES))
 _LEAD_HEDGE = re.compile(rf"^(?P<h>{_HEDGE}) ")
 _TAIL_HEDGE = re.compile(rf" (?P<h>{_HEDGE})(?: so)?$")
-_TIME_TAIL = re.compile(rf" {alternation(TIME_WORDS | AFTERTHOUGHTS)}$")
+#: Said after a sentence without changing it: when ("yesterday") or an afterthought ("though").
+_TAIL = re.compile(rf" {alternation(TIME_WORDS | AFTERTHOUGHTS)}$")
 #: Words that carry meaning: a piece holding one is never skipped.
 _CONTENT = frozenset(
     {w for phrase in ACTION_PHRASES for w in phrase.split() if w not in ("me", "up", "out", "down")}
@@ -128,7 +129,7 @@ def _variants(text: str) -> list[tuple[str, float | None, str]]:
     if (m := _DISCOURSE.match(text)) and m.end() < len(text):
         bare = text[m.end():]
         out.append((bare, None, m.group().strip()))
-    if (t := _TIME_TAIL.search(bare)) and t.start() > 0:
+    if (t := _TAIL.search(bare)) and t.start() > 0:
         bare = bare[:t.start()]
         out.append((bare, None, t.group().strip()))
     for pattern in (_LEAD_HEDGE, _TAIL_HEDGE):

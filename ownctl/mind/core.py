@@ -86,8 +86,9 @@ class _Fit:
 
 class WholeMindNeeded(RuntimeError):
     """A Mind that may refit only some agents' predictors (a partial load) met a change that moves
-    the scale every predictor shares (:func:`ownctl.ownership.predict.pooled_scale`): the
-    instruction must be carried out again on the whole Mind."""
+    what every predictor shares (the scale, :func:`ownctl.ownership.predict.pooled_scale`; the
+    weight of silence, :func:`ownctl.ownership.silence.silence_weight`) or gives an agent it did
+    not load a silent row: the instruction must be carried out again on the whole Mind."""
 
 
 @dataclass

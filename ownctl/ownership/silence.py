@@ -35,6 +35,7 @@ agent owns the object: as if ``q`` were a soft claim), and its curvature where i
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 
 import numpy as np
 
@@ -44,6 +45,7 @@ from ownctl.config import PredictConfig
 _GRID = (np.arange(200) + 0.5) / 200
 
 
+@lru_cache(maxsize=4096)  # a pure function of the census, asked again after every claim
 def silence_weight(examined: int, agents: int, owned: float, not_owned: float,
                    cfg: PredictConfig | None = None) -> float:
     """``kappa`` for a household whose claims are about ``examined`` objects, with ``agents``
