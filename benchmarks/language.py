@@ -14,6 +14,11 @@ Each utterance is
 * **refused** when the parser did not understand it (or understood it but the reply lacks the
   expected piece): nothing is stored.
 
+An utterance with a ``pending`` question (group ``answers``: the question the robot put to the
+speaker, ``{kind, object, action, rule}`` as ``ownctl ask --put`` keeps it) is read as its answer
+(:func:`ownctl.language.answers.answer_instructions`, as ``ownctl say`` reads it); one not taken as
+an answer is refused (the question stays pending).
+
 Prints the share understood, stored wrongly and refused per group and overall, then the median
 parse time (over ``--repeats`` runs, wall and CPU) of utterances of about 20, 200 and 2,000
 characters and the ratio t(2000)/t(200), and how long refusing a 100 KB utterance takes. Exits 1
@@ -39,12 +44,13 @@ sys.path.insert(0, str(ROOT))
 
 from ownctl.errors import OwnctlError  # noqa: E402
 from ownctl.language import Context, understand  # noqa: E402
+from ownctl.language.answers import answer_instructions  # noqa: E402
 from ownctl.language.context import Facts  # noqa: E402
 from ownctl.language.lexicon import COLORS  # noqa: E402
 from ownctl.logic.rules import parse_norm  # noqa: E402
 
 DATA = ROOT / "benchmarks" / "data" / "utterances.toml"
-GROUPS = ("claims", "denials", "reprimands", "norms", "questions", "tasks")
+GROUPS = ("claims", "denials", "reprimands", "norms", "questions", "tasks", "answers")
 BAR = 0.90  # share understood, overall and in every group
 # Sentences of the timing utterances, repeated until the wanted length.
 TIMING_SENTENCES = (
@@ -87,6 +93,14 @@ def judge(entry: dict[str, Any], base: Context) -> dict[str, Any]:
                               action=entry.get("doing"))
     want = {canonical(t) for t in entry["expect"]}
     out: dict[str, Any] = {"group": entry["group"], "say": entry["say"], "expect": sorted(want)}
+    if "pending" in entry:  # an answer to the robot's question: read as the store reads it
+        answer = answer_instructions(entry["say"], entry["pending"], ctx)
+        if answer is None:
+            return {**out, "verdict": "refused", "got": [],
+                    "reply": "not an answer: the question stays pending"}
+        texts = {canonical(i.text()) for i in answer}
+        verdict = "understood" if texts == want else "wrong"
+        return {**out, "verdict": verdict, "got": sorted(texts), "reply": ""}
     try:
         got = understand(entry["say"], ctx)
     except OwnctlError as err:
