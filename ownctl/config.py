@@ -70,6 +70,11 @@ class PredictConfig:
     # kappa is rounded down to a multiple of silence_step and kept at most silence_max (0: off)
     silence_step: float = 0.2
     silence_max: float = 0.8
+    # the width of every agent's intercept prior (ownctl/ownership/household.py): the most probable
+    # of household_spreads times intercept_scale given every agent's claims, with a log prior of
+    # household_bonus (nats) for the first (one value: always the configured width)
+    household_spreads: tuple[float, ...] = (1.0, 0.5, 0.2)
+    household_bonus: float = 1.0
 
 
 @dataclass(frozen=True)

@@ -28,10 +28,12 @@ from typing import TYPE_CHECKING, Any, TypeVar
 import numpy as np
 
 from ownctl.app.settings import to_config
+from ownctl.config import PredictConfig
 from ownctl.learn.evidence import Vocabulary
 from ownctl.logic.rules import Rule, parse_norm, parse_rule
 from ownctl.logic.vocab import ACTIONS
 from ownctl.mind import SWITCHES, ClaimInfo, Given, Mind, RuleInfo, Switches, WholeMindNeeded
+from ownctl.ownership.household import Household
 from ownctl.ownership.predict import PREDICTOR_VERSION
 from ownctl.world.model import Area, ObjectSpec
 
@@ -46,6 +48,9 @@ EVIDENCE = "predict.evidence"
 SCALE = "predict.scale"
 #: :attr:`Mind.silence` (what silence weighs in the stored priors), an internal value like ``LENT``.
 SILENCE = "predict.silence"
+#: :attr:`Mind.household` (the intercepts' prior the stored priors use: [mean, spread]; absent:
+#: the configured one), an internal value like ``LENT``.
+HOUSEHOLD = "predict.household"
 
 T = TypeVar("T")
 
@@ -115,6 +120,7 @@ class _Base:
     evidence: dict[str, tuple[float, ...]]  # Mind.scale_evidence
     scale: int  # Mind.scale
     silence: float  # Mind.silence
+    household: Household  # Mind.household
     layout: int  # the Mind's layout when this was taken (same layout: same objects and agents)
     version: int | None = PREDICTOR_VERSION  # the predictor that wrote the stored priors (None: another)
 
@@ -174,7 +180,7 @@ class Stored:
             prior=mind.predicted.copy(), source=mind.prior_source.copy(), posterior=post,
             perms={a: dict(g) for a, g in mind.perms.items()}, rules=_rules_state(mind),
             switches=_switch_values(mind), lent=mind.lent, evidence=dict(mind.scale_evidence),
-            scale=mind.scale, silence=mind.silence, layout=mind.layout,
+            scale=mind.scale, silence=mind.silence, household=mind.household, layout=mind.layout,
         )
 
     def _follow(self, edited: frozenset[str], respecified: frozenset[str],
@@ -197,6 +203,7 @@ class Stored:
         base.evidence = dict(mind.scale_evidence)
         base.scale = mind.scale
         base.silence = mind.silence
+        base.household = mind.household
         base.areas = tuple(mind.areas)
 
     # -- saving ---------------------------------------------------------------------------------
@@ -232,6 +239,10 @@ class Stored:
             tx.meta.set_setting(SCALE, mind.scale or None)
         if mind.silence != base.silence:
             tx.meta.set_setting(SILENCE, mind.silence or None)
+        if mind.household != base.household:
+            held = mind.household
+            configured = held == Household.configured(mind.settings.predict)
+            tx.meta.set_setting(HOUSEHOLD, None if configured else [held.mean, held.spread])
         if base.version != PREDICTOR_VERSION:
             tx.meta.set_setting(VERSION, PREDICTOR_VERSION)
             base.version = PREDICTOR_VERSION
@@ -503,14 +514,17 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     mind.scale_evidence = {a: tuple(float(x) for x in v) for a, v in evidence.items() if a in mind.agents}
     mind.scale = stored_scale(stored)
     index = {r.id: i for i, r in enumerate(rows)}
-    others = None
-    if focus is not None:  # the claims of the agents not loaded, as silence needs them
+    others = others_totals = None
+    if focus is not None:  # the claims of the agents not loaded, as silence and the household need them
         mask = np.zeros(len(rows), dtype=bool)
         owned = not_owned = 0.0
         for object_id, total, count in tx.beliefs.claim_census(focus):
             mask[index[object_id]] = True
             owned, not_owned = owned + total, not_owned + count - total
         others = (mask, owned, not_owned)
+        totals = tx.beliefs.claim_totals(focus)
+        others_totals = (np.array([t[0] for t in totals], dtype=float),
+                         np.array([t[1] for t in totals], dtype=float))
     column = {a.id: j for j, a in enumerate(known)}
     stored_post = np.full(mind.claims.shape, np.nan)
     prior = np.full(mind.claims.shape, np.nan)
@@ -563,6 +577,7 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
         mind.restore_rule(row.action, rule_of(row.text, row.origin),
                           RuleInfo(row.origin, dict(row.provenance or {})))
     mind.restore_silence(stored_silence(stored), others)
+    mind.restore_household(stored_household(stored, mind.settings.predict), others_totals)
     out = Stored(mind, {r.name: r.id for r in rows}, agent_ids, writable)
     # compare with what the store really holds (NULL priors and posteriors are written on save)
     held = np.flatnonzero(~np.isnan(stored_post).all(axis=1))
@@ -584,6 +599,13 @@ def stored_silence(settings: dict[str, Any]) -> float:
     """What an agent's silence weighs in the stored priors (:attr:`Mind.silence`), from the
     store's settings."""
     return float(settings.get(SILENCE) or 0.0)
+
+
+def stored_household(settings: dict[str, Any], cfg: PredictConfig) -> Household:
+    """The prior of every agent's intercept the stored priors use (:attr:`Mind.household`), from
+    the store's settings (absent: the configured one, ``cfg``)."""
+    value = settings.get(HOUSEHOLD)
+    return Household.configured(cfg) if value is None else Household(float(value[0]), float(value[1]))
 
 
 def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:

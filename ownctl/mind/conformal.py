@@ -68,10 +68,11 @@ def loo_scores(mind: Mind, agent: str) -> np.ndarray:
         held = folds == fold
         without = np.zeros(len(mind.objects), dtype=bool)
         without[idx[held]] = True
-        # as the Mind's own predictor learns: its rows, borrowed term, scale and silence
+        # as the Mind's own predictor learns: its rows, borrowed term, scale, silence and household
         X, rows, targets, offset = mind.fit_inputs(agent, without)
         model = KernelOwnershipModel(cfg).fit(X[rows], targets, None if offset is None else offset[rows],
-                                             cfg.scales[mind.scale], kappa=mind.silence)
+                                             cfg.scales[mind.scale], kappa=mind.silence,
+                                             household=mind.household)
         p = model.predict_proba(X[idx[held]], None if offset is None else offset[idx[held]])
         out[held] = np.where(claims[held] >= 0.5, 1.0 - p, p)
     return out

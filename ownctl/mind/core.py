@@ -42,6 +42,7 @@ from ownctl.logic.prob import p_forbidden
 from ownctl.logic.rules import Norm, Rule
 from ownctl.logic.vocab import ACTIONS
 from ownctl.ownership.features import agent_features, percept_features, recency_feature
+from ownctl.ownership.household import Household, claim_totals, household_prior
 from ownctl.ownership.infer import posterior
 from ownctl.ownership.predict import (
     KernelOwnershipModel,
@@ -87,7 +88,8 @@ class _Fit:
 class WholeMindNeeded(RuntimeError):
     """A Mind that may refit only some agents' predictors (a partial load) met a change that moves
     what every predictor shares (the scale, :func:`ownctl.ownership.predict.pooled_scale`; the
-    weight of silence, :func:`ownctl.ownership.silence.silence_weight`) or gives an agent it did
+    weight of silence, :func:`ownctl.ownership.silence.silence_weight`; the household's prior of
+    the intercepts, :func:`ownctl.ownership.household.household_prior`) or gives an agent it did
     not load a silent row: the instruction must be carried out again on the whole Mind."""
 
 
@@ -221,6 +223,11 @@ class _Percepts:
             times[i] = spec.last_touch.get(agent, np.nan)
 
 
+def _rate(logit: float) -> float:
+    """The probability of a logit."""
+    return float(1.0 / (1.0 + np.exp(-logit)))
+
+
 def _names_rule(rule: Rule, pred: str, name: str) -> bool:
     return any(lit.atom == (pred, name) for lit in rule.literals)
 
@@ -295,6 +302,10 @@ class Mind:
         self._examined: frozenset[str] = frozenset()
         self._examined_rows: np.ndarray | None = None
         self._others: tuple[np.ndarray, float, float] | None = None  # a partial Mind: the others' census
+        # the prior of every agent's intercept (ownctl/ownership/household.py), and for a partial
+        # Mind the claims' per-agent totals of the agents it did not load; see _follow_household
+        self.household = Household.configured(self.settings.predict)
+        self._others_totals: tuple[np.ndarray, np.ndarray] | None = None
         self._posterior: np.ndarray | None = None
         self._inferred: tuple[list[int], np.ndarray] | None = None
 
@@ -377,6 +388,7 @@ class Mind:
         try:
             if self._stale or self._rescore:
                 self._follow_silence()
+                self._follow_household()
             if self._stale:
                 self._follow_lenders()
             fits = {a: self._fit(a) for a in sorted(self._stale) if a in self.agents}
@@ -439,6 +451,43 @@ class Mind:
         self._stale.update(fresh)
         self._edited.update(fresh)
         self.silence, self._examined, self._examined_rows = kappa, names, mask
+
+    def totals(self) -> tuple[np.ndarray, np.ndarray]:
+        """The claims' total weight for "owns" and their number, one entry per agent: the loaded
+        agents' and, for a partial Mind, the store's for the others (:meth:`restore_household`)."""
+        if self._others_totals is None or self._refit is None:
+            return claim_totals(self.claims)
+        cols = [j for j, a in enumerate(self.agents) if a in self._refit]
+        owned, stated = claim_totals(self.claims[:, cols])
+        their_owned, their_stated = self._others_totals
+        return np.concatenate([owned, their_owned]), np.concatenate([stated, their_stated])
+
+    def restore_household(self, household: Household,
+                          others: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+        """The intercept's prior the stored priors use, and for a partial Mind the per-agent claim
+        totals of the agents it did not load (weight for "owns", number): the state a store holds
+        (ownctl/app/mindstore.py)."""
+        self.household, self._others_totals = household, others
+
+    def _follow_household(self) -> None:
+        """Estimate the household's prior of every intercept again from every agent's claims
+        (:func:`~ownctl.ownership.household.household_prior`, after the weight of silence); when it
+        moves, every agent is refitted. A partial Mind that did not load them raises
+        :class:`WholeMindNeeded`."""
+        if not self.switches.prediction:
+            return
+        owned, stated = self.totals()
+        household = household_prior(owned, stated, self.settings.predict, self.silence)
+        if household == self.household:
+            return
+        fresh = set(self.agents) - self._stale
+        if fresh and self._refit is not None and not fresh <= self._refit:
+            raise WholeMindNeeded(f"the household's prior of how often an agent owns things moves "
+                                  f"(rate {_rate(household.mean):.3f}, spread {household.spread:g}): "
+                                  "the agents' predictors are refitted")
+        self._stale.update(fresh)
+        self._edited.update(fresh)
+        self.household = household
 
     def _follow_scale(self, fits: dict[str, _Fit | None]) -> None:
         """Take the refitted agents' evidence and choose the scale every predictor uses again
@@ -600,7 +649,7 @@ class Mind:
             return None
         X, rows, targets, offset = self.fit_inputs(agent)
         models = fit_scales(X[rows], targets, None if offset is None else offset[rows], self.settings.predict,
-                            self.silence)
+                            self.silence, self.household)
         return _Fit(models, X, offset)
 
     def _predict(self, j: int, fit: _Fit | None) -> None:

@@ -57,15 +57,17 @@ from functools import cached_property
 import numpy as np
 
 from ownctl.config import PredictConfig
+from ownctl.ownership.household import Household
 from ownctl.ownership.silence import silent_curvature, silent_loss, silent_target
 
 MAX_NEWTON = 50
 TOLERANCE = 1e-10
 #: Raised whenever what the predictor computes from the same claims and percepts changes (2: the
-#: recalibration on claims left out; 3: the scale pooled over agents; 4: silence weighed). A store
+#: recalibration on claims left out; 3: the scale pooled over agents; 4: silence weighed; 5: the
+#: household's prior of the intercept, no rescaling below the full scale). A store
 #: whose priors another version wrote refits them on its next load (ownctl/app/mindstore.py), so a
 #: store keeps meaning what a Mind told the same things would believe.
-PREDICTOR_VERSION = 4
+PREDICTOR_VERSION = 5
 
 
 def _sigmoid(z: np.ndarray) -> np.ndarray:
@@ -106,7 +108,8 @@ class KernelOwnershipModel:
         return _off_half((float(np.sum(p)) + pseudo * self.cfg.base_rate) / (len(p) + pseudo))
 
     def fit(self, X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None,
-            scale: float = 1.0, kernel: np.ndarray | None = None, kappa: float = 0.0) -> KernelOwnershipModel:
+            scale: float = 1.0, kernel: np.ndarray | None = None, kappa: float = 0.0,
+            household: Household | None = None) -> KernelOwnershipModel:
         """Fit on feature rows ``X`` (n, d) and soft targets ``p`` (n,) in [0, 1]; returns self.
         ``offset`` (n,): a borrowed logit term per row (:meth:`SharedRecency.term`) added to the
         model's own; pass the same rule's offset to :meth:`predict_proba`. ``scale`` multiplies
@@ -115,7 +118,8 @@ class KernelOwnershipModel:
         claims under that prior (0 without claims). ``kernel``: the RBF kernel of ``X`` with itself,
         when the caller has it. A row whose target is NaN is the agent's silence about an object
         others made claims about, weighed by ``kappa`` (:mod:`ownctl.ownership.silence`; dropped
-        when ``kappa`` is 0)."""
+        when ``kappa`` is 0). ``household``: the intercept's prior (:mod:`ownctl.ownership.household`;
+        None: the configured base rate and ``intercept_scale``)."""
         X = np.asarray(X, dtype=float).reshape(len(p), -1) if len(p) else np.zeros((0, 0))
         p = np.clip(np.asarray(p, dtype=float).reshape(len(X)), 0.0, 1.0)
         silent = np.isnan(p)
@@ -137,21 +141,26 @@ class KernelOwnershipModel:
             return self
         cfg = self.cfg
         K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
-        design, penalty, mean = _system(X, cfg, scale, K)
+        intercept = household or Household.configured(cfg)
+        design, penalty, mean = _system(X, cfg, scale, K, intercept)
         shift = np.zeros(len(p)) if offset is None else np.asarray(offset, dtype=float).reshape(len(p))
         self.coef_ = _newton(design, p, penalty, mean, shift, self.kappa_)
         self.evidence_ = log_evidence(X, p, cfg, scale, design @ self.coef_ + shift,
-                                      _prior_term(self.coef_, penalty, mean), K, self.kappa_)
+                                      _prior_term(self.coef_, penalty, mean), K, self.kappa_, intercept)
         self.support_ = X
-        if self.n_claims_ >= cfg.recalibrate_min:
+        if self.n_claims_ >= cfg.recalibrate_min and scale >= max(cfg.scales):
             self.recalibration_ = (design, p, penalty, shift)
         return self
 
     @cached_property
     def rescale_(self) -> tuple[float, float]:
         """``(a, b)``, the rescaling of the fitted logits on the claims left out (:func:`rescaling`),
-        or (1, 0) below ``recalibrate_min`` claims. Computed when first needed: of the models
-        :func:`fit_scales` fits, only the one the predictors use predicts."""
+        or (1, 0) below ``recalibrate_min`` claims or below the full scale: the rescaling corrects
+        what the penalties do to a model whose percepts reach far; at a smaller scale the claims
+        said that percepts tell little, the logits hardly vary, and a rescaling would only fit an
+        intercept again on one agent's claims, undoing its prior (ownctl/ownership/household.py).
+        Computed when first needed: of the models :func:`fit_scales` fits, only the one the
+        predictors use predicts."""
         if self.recalibration_ is None:
             return 1.0, 0.0
         design, p, penalty, shift = self.recalibration_
@@ -249,14 +258,16 @@ def rounded(slope: float, step: float) -> float:
 
 
 def fit_scales(X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None,
-               cfg: PredictConfig | None = None, kappa: float = 0.0) -> list[KernelOwnershipModel]:
+               cfg: PredictConfig | None = None, kappa: float = 0.0,
+               household: Household | None = None) -> list[KernelOwnershipModel]:
     """One agent's model fitted at each of ``cfg.scales`` (their :attr:`evidence_` says how well
     each prior explains the claims; :func:`pooled_scale` picks one for every agent); rows whose
-    target is NaN are silences weighed by ``kappa`` (:meth:`KernelOwnershipModel.fit`)."""
+    target is NaN are silences weighed by ``kappa``, ``household`` the intercept's prior
+    (:meth:`KernelOwnershipModel.fit`)."""
     cfg = cfg or PredictConfig()
     X = np.asarray(X, dtype=float)
     K = rbf_kernel(X, X, cfg.gamma) if len(p) else None
-    return [KernelOwnershipModel(cfg).fit(X, p, offset, scale, K, kappa) for scale in cfg.scales]
+    return [KernelOwnershipModel(cfg).fit(X, p, offset, scale, K, kappa, household) for scale in cfg.scales]
 
 
 def pooled_scale(evidence: Iterable[Sequence[float]], cfg: PredictConfig | None = None) -> int:
@@ -279,17 +290,20 @@ def pooled_scale(evidence: Iterable[Sequence[float]], cfg: PredictConfig | None 
 
 
 def log_evidence(X: np.ndarray, p: np.ndarray, cfg: PredictConfig, scale: float, f: np.ndarray,
-                 prior_term: float, kernel: np.ndarray | None = None, kappa: float = 0.0) -> float:
+                 prior_term: float, kernel: np.ndarray | None = None, kappa: float = 0.0,
+                 household: Household | None = None) -> float:
     """The Laplace approximation of log p(claims | scale) at the fit's logits ``f`` of the claimed
     rows ``X``: the soft log-likelihood, minus the prior term ``prior_term`` (half the penalty at
     the fit), minus half the log determinant of ``I + W^1/2 S W^1/2``, with ``S`` the prior
-    covariance of the logits (``scale C (K + X X') + intercept_scale^2``) and ``W`` the logistic
+    covariance of the logits (``scale C (K + X X') + spread^2``, the intercept's prior std from
+    ``household``, default ``intercept_scale``) and ``W`` the logistic
     curvature at ``f`` (Rasmussen and Williams, Gaussian Processes for Machine Learning, 3.4.4).
     ``kernel``: the RBF kernel of ``X`` with itself, when the caller has it. Rows whose target is
     NaN are silences weighed by ``kappa`` (their curvature where convex)."""
     n = len(p)
     K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
-    cov = scale * cfg.C * (K + X @ X.T) + cfg.intercept_scale**2
+    spread = cfg.intercept_scale if household is None else household.spread
+    cov = scale * cfg.C * (K + X @ X.T) + spread**2
     s = _sigmoid(f)
     root = np.sqrt(_curvature(s, p, kappa))
     chol = np.linalg.cholesky(np.eye(n) + root[:, None] * cov * root[None, :])
@@ -331,11 +345,13 @@ def _curvature(s: np.ndarray, p: np.ndarray, kappa: float) -> np.ndarray:
     return out
 
 
-def _system(X: np.ndarray, cfg: PredictConfig, scale: float = 1.0,
-            kernel: np.ndarray | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _system(X: np.ndarray, cfg: PredictConfig, scale: float = 1.0, kernel: np.ndarray | None = None,
+            household: Household | None = None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The fit's design ``[K, X, 1]`` over the claimed rows ``X`` (``kernel``: ``K``, when the
     caller has it), its penalty (RKHS norm and ``|w|^2`` over ``scale * C``, the intercept's prior
-    precision) and the prior mean of the coefficients."""
+    precision) and the prior mean of the coefficients (``household``: the intercept's prior,
+    default the configured one)."""
+    intercept = household or Household.configured(cfg)
     n, d = X.shape
     K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
     design = np.hstack([K, X, np.ones((n, 1))])
@@ -343,9 +359,9 @@ def _system(X: np.ndarray, cfg: PredictConfig, scale: float = 1.0,
     penalty = np.zeros((m, m))
     penalty[:n, :n] = K / (scale * cfg.C)
     penalty[n : n + d, n : n + d] = np.eye(d) / (scale * cfg.C)
-    penalty[-1, -1] = 1.0 / cfg.intercept_scale**2
+    penalty[-1, -1] = 1.0 / intercept.spread**2
     mean = np.zeros(m)
-    mean[-1] = _logit(cfg.base_rate)
+    mean[-1] = intercept.mean
     return design, penalty, mean
 
 

@@ -528,6 +528,16 @@ class Beliefs(_Part):
             query = query.where(c.agent_id.not_in(list(besides_agents)))
         return [(int(o), float(total), int(n)) for o, total, n in self._rows(query)]
 
+    def claim_totals(self, besides_agents: Sequence[int] = ()) -> list[tuple[float, int]]:
+        """Per agent with claims, other than ``besides_agents``: the claims' total probability and
+        their count (one grouped query over the claims; the order of the agents is the query's)."""
+        c = ownership.c
+        query = (select(c.agent_id, func.sum(c.claim_p), func.count(c.claim_p))
+                 .where(c.claim_p.is_not(None)).group_by(c.agent_id))
+        if besides_agents:
+            query = query.where(c.agent_id.not_in(list(besides_agents)))
+        return [(float(total), int(n)) for _, total, n in self._rows(query)]
+
     def agents_owning(self, besides: int | None = None) -> set[int]:
         """The ids of the agents some claim says own an object (``claim_p`` at least 1/2), not
         counting the claims about object ``besides`` (one query over the claims)."""
