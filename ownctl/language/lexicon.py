@@ -12,6 +12,7 @@ robot cannot touch or move one without grasping it; *bringing* or *putting away*
 from __future__ import annotations
 
 import re
+from itertools import product
 
 #: Names the robot answers to; stripped when used as a vocative ("No Baxter, ...", "Robot, ...").
 ROBOT_NAMES = ("baxter", "robot")
@@ -109,13 +110,28 @@ KIN = frozenset({
     "girlfriend", "boyfriend", "kid", "child", "niece", "nephew", "guest", "flat-mate", "room-mate",
 })
 
+
+def phrases(*parts: tuple[str, ...]) -> frozenset[str]:
+    """Every phrase made of one choice from each part, in order (an empty choice adds no word)."""
+    return frozenset(" ".join(w for w in pick if w) for pick in product(*parts))
+
+
+_IT_WORDS = ("it", "that", "this")
+#: Asides saying the speaker still needs the object ("No, I still need it"): reasons to keep it.
+STILL_NEEDED = (phrases(("i", "we"), ("", "still"), ("need", "use", "want"), _IT_WORDS)
+                | phrases(("i am", "we are"), ("using", "still using", "keeping"), _IT_WORDS)
+                | phrases(("i", "we"), ("will", "want to", "would like to"), ("keep",), _IT_WORDS))
+#: Asides saying nobody needs the object any more ("Sure, I don't need it anymore"): reasons to let
+#: it go.
+NOT_NEEDED = (phrases(("i", "we"), ("do not", "no longer", "never"), ("need", "use", "want"), _IT_WORDS,
+                      ("", "anymore", "any more", "now"))
+              | phrases(("nobody",), ("needs", "uses", "wants"), _IT_WORDS, ("", "anymore", "any more"))
+              | phrases(("i am", "we are"), ("done with",), _IT_WORDS))
 #: Asides that say nothing when they stand alone between commas ("The keys are Xuan's, by the way").
 ASIDES = frozenset({
     "by the way", "btw", "fyi", "for the record", "for your information", "just saying", "you know",
     "i mean", "to be honest", "honestly", "in fact", "of course", "as you know", "mind you",
-    "i need it", "i still need it", "i need that", "i still need that", "i am using it",
-    "i am still using it", "i still use it",
-})
+}) | STILL_NEEDED | NOT_NEEDED
 
 #: Discourse markers that may open a sentence without changing what it says ("So, whose is it?").
 DISCOURSE = frozenset({

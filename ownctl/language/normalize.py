@@ -19,7 +19,7 @@ contractions, vocatives ("No Baxter, ...") or "please". Steps, in order:
 
 Some phrases are said in the words the grammar knows: "Jake's the owner" -> "jake is the owner",
 "I'm the one who owns" -> "i own", "belonging to" -> "owned by", "did you refuse to" -> "did you
-not".
+not", "that would be Jake's" -> "that is jake 's" (a polite "is", not a conditional).
 
 Spaces are collapsed before the rewrites, so punctuation inside a phrase ("never, ever") does not
 break it.
@@ -73,6 +73,9 @@ REWRITES: tuple[tuple[re.Pattern[str], str], ...] = tuple(
         (r"'ll\b", " will"),
         (r"'ve\b", " have"),
         (r"\bi'd\b", "i would"),
+        (r"\b(that|this|it|they|these|those)'d be\b", r"\1 would be"),
+        (r"\b(that|this|it) would be\b", r"\1 is"),
+        (r"\b(they|these|those) would be\b", r"\1 are"),
         (r"'s\b", " 's"),
         (r"\b([\w-]+) 's (?=the (?:owner|owners|one|person|people)\b)", r"\1 is "),
         (r"\bi am the (?:one|person) (?:who|that) owns?\b", "i own"),

@@ -202,10 +202,12 @@ def off_limits(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 # -- claims ----------------------------------------------------------------------------------
 
 @GRAMMAR.rule("claim", rf"(?:(?:no|nope|yes|yeah) )?(?P<now>now )?<THINK><OBJ> {_VERB} (?P<rest>.+)",
-              r"<THINK>(?P<rest>(?:not )?(?:all |only )?(?:mine|<NAME> 's)(?: .+)?)")
+              r"<THINK>(?P<rest>(?:not )?(?:all |only )?(?:mine|<NAME> 's)(?: .+)?)",
+              r"<THINK>(?P<verb>belongs to|does not belong to|owned by|not owned by) (?P<rest>.+)")
 def claim(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"This is mine", "That belongs to Xuan", "It's not Jake's", "The mug's mine", "Not mine",
-    "(but) now it's Jake's" (a transfer: Jake's alone)."""
+    "(but) now it's Jake's" (a transfer: Jake's alone); without its subject, of the object in
+    question ("Belongs to nobody", "Owned by Mia")."""
     found = _owned(m, r)
     return None if found is None else tuple(_claims(r.obj(group(m, "obj") or "that"), found))
 
@@ -371,6 +373,28 @@ def _subjects(phrase: str, r: Resolver) -> tuple[list[str], bool] | None:
         return None
     found = {o for alt in alternatives for o in r.select(alt, phrase)}
     return sorted(found), negated
+
+
+_FINE = r"(?:ok|fine|allowed|alright|permitted)"
+
+
+@GRAMMAR.rule("norm", rf"(?P<cls>.+?) (?:is|are) (?P<neg>not )?{_FINE}(?: too| as well)?")
+def fine_norm(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"Red ones are fine", "Jake's things are not ok", said while the robot does something: the
+    norm for what it does on that class. A class without its head word is the same class ("red is
+    fine": red ones). Only a class with a condition: said of one thing ("the mug is fine") or of
+    everything, it may tell how things are rather than what may be done with them. It is tried
+    before the claims about many objects, which would look for "Jake's things" among the objects
+    seen and fail."""
+    if r.ctx.action is None:
+        return None
+    sign = "forbid" if m["neg"] else "allow"
+    action = r.current_action("do that")
+    for phrase in (m["cls"], f"{m['cls']} ones"):
+        alternatives = _alternatives(phrase, sign, action, r)
+        if alternatives is not None:
+            return None if any(not alt for alt in alternatives) else _rules(sign, action, alternatives)
+    return None
 
 
 @GRAMMAR.rule("claim", r"<THINK>(?P<subj>.+?) (?P<verb>are|is) (?:all |both )?(?P<rest>.+)",

@@ -94,3 +94,109 @@ def test_more_everyday_replies(words: str, expected: str | None) -> None:
                                                  ("No, don't throw away the book", MAY)])
 def test_other_words_are_no_answer(words: str, question: dict) -> None:
     assert answer_instructions(words, question, CTX) is None
+
+
+# -- replies of several clauses: reply words, asides, statements and remarks ----------------------
+
+ALLOW = (Permission("trash", "mug", forbid=False),)
+FORBID = (Permission("trash", "mug", forbid=True),)
+RED = {"kind": "rule", "rule": "forbid trash if isColored red"}
+
+
+@pytest.mark.parametrize(("words", "expected"), [
+    ("indeed it does", "yes"), ("nope absolutely not", "no"), ("Actually no.", "no"),
+    ("That's not how it works around here", "no"), ("It depends on the colour", "partly"),
+    ("Let me check", "unknown"), ("Check with Casey first", "unknown"), ("sure no", None), ("ok ok", None),
+])
+def test_a_reply_word_may_be_a_run_of_one_kind_with_a_marker_or_a_tail(words: str,
+                                                                        expected: str | None) -> None:
+    assert reading(words) == expected
+
+
+@pytest.mark.parametrize("words", ["Sure, it's worn out", "Yes, but be quick", "Yes it's rubbish",
+                                   "Go ahead, it has been broken for ages", "Yep. Thanks, why?",
+                                   "Of course, nobody uses it anymore"])
+def test_a_yes_with_remarks_that_state_nothing_allows(words: str) -> None:
+    assert answer_instructions(words, MAY, CTX) == ALLOW
+
+
+@pytest.mark.parametrize("words", ["No, it's precious", "Nope, I still use it", "No, leave it alone",
+                                   "Certainly not, it's brand new", "Nope, put it back"])
+def test_a_no_with_remarks_or_a_prohibition_naming_no_action_forbids_the_asked_action(words: str) -> None:
+    assert answer_instructions(words, MAY, CTX) == FORBID
+
+
+def test_a_no_with_whose_it_is_teaches_the_owners_norm_and_a_yes_only_the_claim() -> None:
+    ann = answer_instructions("Definitely not, that's Ann's!", MAY, CTX)
+    assert ann is not None and set(ann) == {Claim("mug", "ann"), FORBID[0],
+                                            NormInstruction(parse_norm("forbid trash if ownedBy ann"))}
+    mine = answer_instructions("no it's mine", MAY, CTX)
+    assert mine is not None and NormInstruction(parse_norm("forbid trash if ownedBy jake")) in mine
+    assert answer_instructions("Sure, it's Casey's and I'm done with it", MAY, CTX) == (
+        Claim("mug", "casey"), ALLOW[0])
+
+
+@pytest.mark.parametrize("words", [
+    "Yes, but not today", "Yes, but only if Ann agrees", "Sure, and the book too", "No... actually yes",
+    "Yes, but don't throw it away", "No, you can throw it away", "Yes, I still need it",
+    "No, nobody needs it anymore",
+    "Yes, leave it", "Yes, maybe", "Yes, whose is it?", "Yes, I don't know", "No, Casey wants it",
+    "Yes, the red one is broken", "It's broken", "No, don't touch it", "Sure, ask Ann first",
+])
+def test_a_reply_that_qualifies_contradicts_or_says_something_else_is_no_answer(words: str) -> None:
+    assert answer_instructions(words, MAY, CTX) is None
+
+
+@pytest.mark.parametrize(("words", "norm"), [
+    ("Yes, indeed it does", "forbid trash if isColored red"),
+    ("Right, leave the red ones alone", "forbid trash if isColored red"),
+    ("Never throw away red things", "forbid trash if isColored red"),
+    ("Nah, red is alright", "allow trash if isColored red"),
+    ("No, red ones are ok", "allow trash if isColored red"),
+    ("No, there's no such rule here", "allow trash if isColored red"),
+])
+def test_a_rule_answer_may_restate_the_norm_it_gives(words: str, norm: str) -> None:
+    assert answer_instructions(words, RED, CTX) == (NormInstruction(parse_norm(norm)),)
+
+
+@pytest.mark.parametrize("words", ["Yes, red is fine", "No, leave the red ones", "Yes, leave the blue ones",
+                                   "Yes, it's mine", "Yes, but not always", "Sure, but only on Sundays",
+                                   "Throw away the mug"])
+def test_a_rule_answer_that_states_another_norm_or_qualifies_is_no_answer(words: str) -> None:
+    assert answer_instructions(words, RED, CTX) is None
+
+
+def test_it_depends_answers_a_rule_question_and_teaches_nothing() -> None:
+    assert answer_instructions("Well, it depends on who owns it", RED, CTX) == ()
+
+
+@pytest.mark.parametrize(("words", "owner"), [
+    ("Belongs to Ann", "ann"), ("That'd be Casey's", "casey"), ("Casey's, why do you ask?", "casey"),
+    ("It's Ann's, ask her", "ann"), ("Ann's, it's been on the shelf for ages", "ann"),
+])
+def test_a_whose_answer_may_carry_asides_remarks_and_a_referral(words: str, owner: str) -> None:
+    got = answer_instructions(words, WHOSE, CTX)
+    assert got is not None and Claim("mug", owner) in got
+    assert {c.agent for c in got if isinstance(c, Claim) and c.negated} == {"ann", "casey", "jake"} - {owner}
+
+
+def test_owners_named_together_own_it_together() -> None:
+    assert answer_instructions("Mine and Casey's, why?", WHOSE, CTX) == (
+        Claim("mug", "jake"), Claim("mug", "casey"), Claim("mug", "ann", negated=True))
+
+
+def test_a_denial_may_come_with_a_dont_know_and_nobody_with_a_remark() -> None:
+    not_mine = (Claim("mug", "jake", negated=True),)
+    assert answer_instructions("Not mine, check with Ann", WHOSE, CTX) == not_mine
+    assert answer_instructions("Not mine, no idea whose", WHOSE, CTX) == not_mine
+    nobody = answer_instructions("Nobody's, it has sat there for ages", WHOSE, CTX)
+    assert nobody is not None and len(nobody) == 3
+    assert all(isinstance(c, Claim) and c.negated for c in nobody)
+
+
+@pytest.mark.parametrize("words", ["Casey's, no idea", "Casey's, and the book is Ann's", "It's broken",
+                                   "Casey's, though Ann uses it", "How come?", "Casey's, maybe, why?",
+                                   "Casey's? No, Ann's", "Ann's, I mean Casey's",
+                                   "Ann's, but she gave it to Casey"])
+def test_a_whose_answer_that_doubts_itself_or_says_something_else_is_no_answer(words: str) -> None:
+    assert answer_instructions(words, WHOSE, CTX) is None

@@ -489,3 +489,37 @@ def test_a_why_question_joined_to_another_sentence_keeps_both() -> None:
 def test_lending_afterthoughts_question_tags_and_guesses(utterance: str, about: str | None,
                                                         want: set[str]) -> None:
     assert texts(utterance, replace(CTX, about=about)) == want
+
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("Belongs to Bo.", {"claim cap bo"}),
+    ("Owned by nobody", {"claim cap " + c.split()[2] + " --not" for c in EVERYONE_NOT}),
+    ("Doesn't belong to Xuan", {"claim cap xuan --not"}),
+    ("That would be Jake's, I think", {"claim cap jake --p 0.8"}),
+])
+def test_a_claim_may_leave_out_its_subject_or_say_would_be(utterance: str, want: set[str]) -> None:
+    assert texts(utterance, replace(CTX, about="cap")) == want
+
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("Blue ones are fine", "allow collect if isColored blue"),
+    ("Green is ok.", "allow collect if isColored green"),
+    ("Bo's things are not alright", "forbid collect if ownedBy bo"),
+])
+def test_a_class_said_to_be_fine_while_the_robot_acts_is_a_norm_for_its_action(utterance: str,
+                                                                                 want: str) -> None:
+    assert texts(utterance, replace(CTX, about="cap", action="collect")) == {parse_norm(want).text()}
+
+
+@pytest.mark.parametrize("utterance", ["Green is ok.", "The hat is fine", "Everything is fine", "We're fine"])
+def test_being_fine_says_nothing_of_one_thing_of_everything_or_without_an_action(utterance: str) -> None:
+    acting = replace(CTX, about="cap", action="collect")
+    with pytest.raises(OwnctlError):
+        understand(utterance, CTX if utterance.startswith("Green") else acting)
+
+
+def test_saying_one_no_longer_needs_a_thing_is_an_aside() -> None:
+    assert texts("That's mine, I don't need it anymore.", replace(CTX, about="cap")) == {
+        "claim cap olga"}
+    assert texts("It's Bo's and we are done with it", replace(CTX, about="cap")) == {"claim cap bo"}
+

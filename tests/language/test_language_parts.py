@@ -36,6 +36,7 @@ from ownctl.logic.rules import parse_norm
     ("the twins' stuff", "the twins 's stuff"),
     ("I can't, you won't, it isn't", "i can not you will not it is not"),
     ("Okay, you're allowed to", "ok you are allowed to"),
+    ("That'd be Bo's; those would be mine", "that is bo 's those are mine"),
 ])
 def test_normalize(raw: str, norm: str) -> None:
     assert normalize(raw) == norm
