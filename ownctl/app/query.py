@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 
 from ownctl.app.beliefs import decision_belief
 from ownctl.app.context import AppContext, Done, use_case
-from ownctl.app.mindstore import changing, load, rule_of, stored_scale, stored_silence
+from ownctl.app.mindstore import changing, load, rule_of, stored_household, stored_scale, stored_silence
 from ownctl.app.settings import probability, to_config
 from ownctl.errors import OwnctlError, UnknownName
 from ownctl.humanize import plural
@@ -22,7 +22,9 @@ if TYPE_CHECKING:
 def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str, Any]:
     """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}],
     "percept_scale"}``, likeliest first; ``p`` and ``source`` are the decision belief;
-    ``percept_scale`` is :func:`percept_scale`; ``silence`` what an agent's silence about an
+    ``percept_scale`` is :func:`percept_scale`; ``rate_spread`` how far an agent's rate may stray
+    from the base rate (the width, in logits, of every intercept's prior, chosen on all agents'
+    claims), and ``rate_spread_configured`` its configured value; ``silence`` what an agent's silence about an
     object others made claims about weighs, and ``silent`` the agents silent about this one while
     it weighs (docs/architecture.md, section 5). With ``coverage``, each owner row also has
     ``"conformal"``: its split-conformal set over {owns, does not own} (docs/asking.md, section 7),
@@ -40,7 +42,10 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
         settings = tx.meta.settings()
         weight = stored_silence(settings)
         spoken = any(r["claim"] is not None for r in rows)
+        cfg = to_config(settings).predict
         data: dict[str, Any] = {"object": obj, "owners": rows, "percept_scale": percept_scale(settings),
+                                "rate_spread": stored_household(settings, cfg).spread,
+                                "rate_spread_configured": cfg.intercept_scale,
                                 "silence": weight,
                                 "silent": sorted(r["agent"] for r in rows if r["claim"] is None)
                                 if weight > 0 and spoken else []}

@@ -113,6 +113,12 @@ def owners(
         note = "\n".join(filter(None, [note, (
             f"percepts move these predictions at {reach:.0%} of their full reach: the claims so far say that "
             "position, colour and recency tell little of who owns what here")]))
+    if data["rate_spread"] < data["rate_spread_configured"] and \
+            any(o["source"] == "prediction" for o in data["owners"]):
+        note = "\n".join(filter(None, [note, (
+            f"the claims so far say the agents own things about equally often: each agent's rate is held "
+            f"within {data['rate_spread']:g} logits of the base rate ({data['rate_spread_configured']:g} "
+            "where agents differ)")]))
 
     def human() -> None:
         shown()
