@@ -74,7 +74,7 @@ class PredictConfig:
     # of household_spreads times intercept_scale given every agent's claims, with a log prior of
     # household_bonus (nats) for the first (one value: always the configured width)
     household_spreads: tuple[float, ...] = (1.0, 0.5, 0.2)
-    household_bonus: float = 1.0
+    household_bonus: float = 0.0
 
 
 @dataclass(frozen=True)

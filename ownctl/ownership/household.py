@@ -14,9 +14,10 @@ agent's claims, ``k`` of ``n`` saying "owns" (weights allowed), are Bernoulli dr
 ``sigmoid(m + tau z)``, ``m`` the base rate's logit and ``z`` standard normal; the evidence of a
 width ``tau`` is the product over the agents of that likelihood integrated over ``z``
 (Gauss-Hermite quadrature). The width every intercept's prior uses is the most probable of
-``household_spreads`` (times ``intercept_scale``; 1, 0.5 and 0.2), with a log prior of
-``household_bonus`` (1 nat) for the configured one: agents are pooled towards the base rate only
-when their claims say they are alike, and a few claims keep the configured prior.
+``household_spreads`` (times ``intercept_scale``; 1, 0.5 and 0.2), the first of equals winning
+(``household_bonus``, 0 by default, is a log prior for the configured width): agents are pooled
+towards the base rate when their claims say they are alike, and keep the configured width when
+their claims say they differ.
 
 The prior's centre stays the configured base rate: claims are often about objects chosen by what
 happened (a robot corrected after acting on an owned object is told its owners), so their share of

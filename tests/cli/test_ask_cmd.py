@@ -283,23 +283,26 @@ def test_owners_says_when_the_claims_show_that_agents_own_things_about_equally_o
         ownctl: Ownctl, tmp_path: Path) -> None:
     """A scattered world of 24 objects whose agents each own about a quarter of them: after exact
     claims about 23 objects every intercept's prior is narrowed (ownctl/ownership/household.py),
-    and ``owners`` of the last object says so (and gives the width in --json); after two objects
-    the configured width stands and nothing is said."""
+    and ``owners`` of the last object says so (and gives the width in --json). Where the claims say
+    one agent owns everything and the others nothing, the configured width stands and nothing is
+    said."""
     from ownctl.world.generator import scattered_world
     from ownctl.world.spec import to_toml, world_to_dict
 
+    skewed = from_template(tmp_path / "skewed.db", ownctl.path.read_bytes())
     world = scattered_world(np.random.default_rng(3), 24)
     path = tmp_path / "scattered.toml"
     path.write_text(to_toml(world_to_dict(world)), encoding="utf-8")
-    ownctl("world", "load", str(path))
-    truth = world.true_ownership()
+    truth = world.true_ownership() >= 0.5
     last = world.objects[-1].name
-    for upto, narrowed in ((2, False), (23, True)):
-        lines = [f"claim {o.name} {a}" + ("" if truth[i, j] else " --not")
-                 for i, o in enumerate(world.objects[:upto]) for j, a in enumerate(world.agents)]
-        ownctl("batch", "-", input="\n".join(lines) + "\n")
-        data = ownctl.json("owners", last)
-        shown = ownctl("owners", last).stdout
+    for store, owns, narrowed in ((ownctl, lambda i, j: truth[i, j], True),
+                                  (skewed, lambda i, j: j == 0, False)):
+        store("world", "load", str(path))
+        lines = [f"claim {o.name} {a}" + ("" if owns(i, j) else " --not")
+                 for i, o in enumerate(world.objects[:23]) for j, a in enumerate(world.agents)]
+        store("batch", "-", input="\n".join(lines) + "\n")
+        data = store.json("owners", last)
+        shown = store("owners", last).stdout
         assert data["rate_spread_configured"] == 1.0
         if narrowed:
             assert data["rate_spread"] < 1.0 and "own things about equally often" in shown
