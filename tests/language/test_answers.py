@@ -200,3 +200,121 @@ def test_a_denial_may_come_with_a_dont_know_and_nobody_with_a_remark() -> None:
                                    "Ann's, but she gave it to Casey"])
 def test_a_whose_answer_that_doubts_itself_or_says_something_else_is_no_answer(words: str) -> None:
     assert answer_instructions(words, WHOSE, CTX) is None
+
+
+# -- don't-knows built from parts, hold markers, restrictions, reasons, "ours", feelings ------------
+
+@pytest.mark.parametrize("question", [MAY, RULE, WHOSE])
+@pytest.mark.parametrize("words", ["Haven't the foggiest.", "I don't have a clue", "Not the slightest idea!",
+                                   "No clue whatsoever, sorry", "I've got no idea whose it is",
+                                   "Hang on, let me ask Casey.", "Wait a sec - check with Ann",
+                                   "One moment, I'll ask Ann.", "Hold on a minute, I'm not sure"])
+def test_dont_knows_from_parts_and_after_a_hold_marker_answer_and_teach_nothing(words: str,
+                                                                                 question: dict) -> None:
+    assert answer_instructions(words, question, CTX) == ()
+
+
+@pytest.mark.parametrize(("words", "question"), [
+    ("Hang on.", MAY), ("Hang on, yes.", MAY), ("Hang on, no.", MAY), ("Hold on, it's Casey's", WHOSE),
+    ("One second, yes it does", RULE), ("It's Casey's, let me ask her", WHOSE),
+])
+def test_a_hold_marker_goes_only_with_a_dont_know(words: str, question: dict) -> None:
+    assert answer_instructions(words, question, CTX) is None
+
+
+@pytest.mark.parametrize("words", ["Only when Ann is home.", "Except on weekends", "Unless it's cracked",
+                                   "Well, only if it is red"])
+def test_a_restriction_to_a_rule_question_is_partly(words: str) -> None:
+    assert answer_instructions(words, RED, CTX) == ()
+    assert reading(words) == "partly"
+
+
+@pytest.mark.parametrize(("words", "question"), [
+    ("Only if you're quick", MAY), ("Only when Ann is home", WHOSE), ("Yes, only for her books", RED),
+    ("No, except on weekends", RED), ("Sure, unless Ann minds", MAY),
+    ("Only if you ask first, it's Casey's", RED), ("It depends on who owns it, it's Casey's", RED),
+])
+def test_a_restriction_answers_no_other_question_and_no_yes_or_no(words: str, question: dict) -> None:
+    assert answer_instructions(words, question, CTX) is None
+
+
+@pytest.mark.parametrize("words", [
+    "No! Casey is still drinking from it.", "Nope, my sister needs it for school", "No, he's still using it",
+    "No, Ann isn't done with it", "Absolutely not, the kids are playing with it right now"])
+def test_a_no_with_someone_using_the_object_forbids_and_teaches_nothing_more(words: str) -> None:
+    assert answer_instructions(words, MAY, CTX) == FORBID
+
+
+def test_someone_using_the_object_is_a_reason_for_any_action() -> None:
+    pick = {"kind": "may", "object": "book", "action": "pickUp"}
+    got = answer_instructions("No, Ann is reading it.", pick, CTX)
+    assert got == (Permission("pickUp", "book", forbid=True),)
+
+
+@pytest.mark.parametrize(("words", "question"), [
+    ("Yes, Casey is still using it", MAY), ("Sure, Ann needs it", MAY), ("I don't know, Casey uses it", MAY),
+    ("No, nobody is using it", MAY), ("No, Casey is not using it", MAY), ("Yes, Casey is using it", RED),
+    ("Casey's, Ann is using it", WHOSE), ("No, Casey wants it", MAY),
+])
+def test_a_reason_to_keep_the_object_goes_with_a_no_to_may_only(words: str, question: dict) -> None:
+    assert answer_instructions(words, question, CTX) is None
+
+
+def test_ours_is_the_speaker_with_the_owners_named_beside_it() -> None:
+    both = (Claim("mug", "ann"), Claim("mug", "jake"), Claim("mug", "casey", negated=True))
+    assert set(answer_instructions("Both of ours - Ann's and mine.", WHOSE, CTX) or ()) == set(both)
+    assert set(answer_instructions("Mine and Ann's, it's both ours", WHOSE, CTX) or ()) == set(both)
+    assert set(answer_instructions("We share it: it's mine and Ann's", WHOSE, CTX) or ()) == set(both)
+    assert set(answer_instructions("It's ours, mine and Ann's, why?", WHOSE, CTX) or ()) == set(both)
+
+
+@pytest.mark.parametrize("words", ["Both of ours.", "It's ours", "Ours, I think", "We share it.",
+                                   "Both of ours, mine, Ann's and Casey's", "Both of ours, Ann's and Casey's",
+                                   "Ours, I mean Casey's"])
+def test_ours_that_names_no_other_owner_or_miscounts_them_is_no_answer(words: str) -> None:
+    assert answer_instructions(words, WHOSE, CTX) is None
+
+
+def test_ours_from_an_unknown_speaker_is_no_answer() -> None:
+    nobody = Context(agents=CTX.agents, objects=CTX.objects)
+    assert answer_instructions("Both of ours", WHOSE, nobody) is None
+    assert answer_instructions("Both of ours, Ann's and mine", WHOSE, nobody) is None
+
+
+def test_ours_says_nothing_to_a_may_question() -> None:
+    assert answer_instructions("No, it's both of ours", MAY, CTX) is None
+
+
+ANNS = {"kind": "rule", "rule": "forbid pickUp if ownedBy ann"}
+
+
+@pytest.mark.parametrize(("words", "norm"), [
+    ("Yes, Ann hates it when people touch her things.", "forbid pickUp if ownedBy ann"),
+    ("Right, she can't stand anyone touching her stuff", "forbid pickUp if ownedBy ann"),
+    ("Ann doesn't like people touching her things", "forbid pickUp if ownedBy ann"),
+    ("No, Ann doesn't mind people picking up her stuff.", "allow pickUp if ownedBy ann"),
+])
+def test_how_someone_feels_about_others_handling_their_things_restates_the_rule(words: str,
+                                                                                 norm: str) -> None:
+    assert answer_instructions(words, ANNS, CTX) == (NormInstruction(parse_norm(norm)),)
+
+
+def test_the_speaker_may_say_how_they_feel_about_their_own_things() -> None:
+    mine = {"kind": "rule", "rule": "forbid trash if ownedBy jake"}
+    assert answer_instructions("Yes, I hate people throwing my stuff away", mine, CTX) == (
+        NormInstruction(parse_norm("forbid trash if ownedBy jake")),)
+
+
+@pytest.mark.parametrize(("words", "question"), [
+    ("Yes, Ann doesn't mind people touching her stuff", ANNS),
+    ("No, Ann hates people touching her things", ANNS),
+    ("Yes, Ann doesn't like people touching her red things", ANNS),
+    ("Yes, Casey hates people touching her stuff", ANNS),
+    ("Yes, Ann doesn't like people touching Casey's stuff", ANNS),
+    ("Yes, Ann hates people throwing away her things", ANNS),
+    ("Yes, Ann likes people touching her stuff", ANNS),
+    ("No, Ann hates people throwing away her things", MAY),
+    ("Ann's, she hates people touching her stuff", WHOSE),
+])
+def test_a_feeling_that_states_another_norm_is_no_answer(words: str, question: dict) -> None:
+    assert answer_instructions(words, question, CTX) is None
