@@ -279,6 +279,7 @@ def test_owners_names_the_agents_silent_about_a_claimed_object(world: Ownctl) ->
     assert world.json("owners", "wallet")["silent"] == []
 
 
+@pytest.mark.slow
 def test_owners_says_when_the_claims_show_that_agents_own_things_about_equally_often(
         ownctl: Ownctl, tmp_path: Path) -> None:
     """A scattered world of 24 objects whose agents each own about a quarter of them: after exact
