@@ -152,13 +152,20 @@ def ask_permitted(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
 
 @GRAMMAR.rule(
     "introduction",
-    rf"(?:{_GREETING} )?(?:i am|my name is|call me|i am called|it is|this is) (?P<name><NAME>)"
-    r"(?: here| speaking)?",
+    rf"(?:{_GREETING} )?(?P<lead>i am|my name is|call me|i am called|it is|this is) (?P<name><NAME>)"
+    r"(?P<tail> here| speaking)?",
 )
 def introduce(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"I'm Jake", "Hi, I'm Jake", "Hello Baxter, I'm Jake", "My name is Jake"."""
+    """"I'm Jake", "Hi, I'm Jake", "Hello Baxter, I'm Jake", "My name is Jake", "It's Jake here".
+
+    "I am" and "it is" also say how someone or something is ("I'm tired", "It's broken"): after
+    "I am" a word of :data:`NOT_NAMES` (a state) is no name; after "it is" or "this is" only a
+    known agent is, or a name followed by "here" or "speaking" ("This is Sam speaking"), so that
+    a remark about an object never adds an agent."""
     name = m["name"]
     if name in NOT_NAMES or r.colour(name) or r.is_object(name):
+        return None
+    if m["lead"] in ("it is", "this is") and not m["tail"] and not r.is_agent(name):
         return None
     return (Introduce(r.new_agent(name)),)
 

@@ -67,12 +67,25 @@ NOT_NOUNS = frozenset({
     "have", "needs", "need", "stay", "stays", "remain", "remains", *CLASS_HEADS,
 }) - {"thing"}
 
-#: Words that cannot be a name in "I'm NAME" ("I'm sorry", "I'm done").
+#: Words that cannot be a name in "I'm NAME" ("I'm sorry", "I'm done"): how a person or a thing
+#: is (feelings, states, conditions, worth), and words that point rather than name.
 NOT_NAMES = frozenset({
     "sorry", "done", "back", "here", "ok", "fine", "good", "ready", "not", "sure", "going",
     "leaving", "finished", "busy", "afraid", "glad", "happy", "the", "a", "an", "mine", "yours",
     "it", "this", "that", "allowed", "robot", "baxter", "you", "me", "red", "someone", "nobody",
     "anyone", "everyone",
+    # how a person is
+    "tired", "hungry", "thirsty", "sleepy", "sick", "ill", "well", "cold", "hot", "warm", "bored",
+    "angry", "sad", "upset", "annoyed", "worried", "scared", "confused", "lost", "late", "early",
+    "home", "out", "in", "off", "away", "coming", "working", "cooking", "eating", "sleeping",
+    "listening", "serious", "kidding", "joking", "okay", "alright", "right", "wrong", "free",
+    "new", "alone", "hurt", "cool", "great", "fantastic", "excited", "pleased", "grateful",
+    # how a thing is
+    "broken", "old", "empty", "full", "clean", "dirty", "junk", "rubbish", "garbage", "trash",
+    "useless", "worn", "torn", "dead", "expired", "fresh", "used", "damaged",
+    "missing", "ruined", "nothing", "everything", "something", "fragile", "heavy", "light",
+    "expensive", "cheap", "precious", "important", "valuable", "worthless", "gone", "open",
+    "closed", "ours", "theirs", "his", "hers", "there", "true", "false",
 })
 
 #: Default colour words (``Context.colors``); "none" is a colour value but never an adjective.

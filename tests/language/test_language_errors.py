@@ -84,6 +84,24 @@ def test_an_introduction_may_name_a_new_agent_but_a_valid_one() -> None:
         understand("I'm any", CTX)
 
 
+@pytest.mark.parametrize("utterance", ["I am cold", "It's empty now", "This is worthless", "it is damaged",
+                                       "I'm late", "It's quite wobbly", "this is a mess"])
+def test_a_state_said_with_i_am_or_it_is_adds_no_agent(utterance: str) -> None:
+    try:
+        said = understand(utterance, CTX).texts()
+    except OwnctlError:
+        return  # not understood: nothing is stored
+    assert not any(text.startswith("agent add") for text in said), said
+
+
+def test_it_is_introduces_a_known_agent_or_a_name_that_says_it_speaks() -> None:
+    assert understand("It's Xuan", CTX).texts() == ("agent add xuan",)
+    assert understand("This is Dana speaking", CTX).texts() == ("agent add dana",)
+    assert understand("it is Dana here", CTX).texts() == ("agent add dana",)
+    with pytest.raises(OwnctlError):
+        understand("This is Dana", CTX)
+
+
 def test_unknown_object_is_named() -> None:
     with pytest.raises(UnknownName, match="unknown object 'spoon'; known objects: block2, cup, wallet"):
         understand("Don't throw the spoon away", CTX)
