@@ -48,8 +48,8 @@ EVIDENCE = "predict.evidence"
 SCALE = "predict.scale"
 #: :attr:`Mind.silence` (what silence weighs in the stored priors), an internal value like ``LENT``.
 SILENCE = "predict.silence"
-#: :attr:`Mind.household` (the intercepts' prior the stored priors use: [mean, spread]; absent:
-#: the configured one), an internal value like ``LENT``.
+#: The width of :attr:`Mind.household` (the intercepts' prior the stored priors use; its centre is
+#: the configured base rate; absent: the configured width), an internal value like ``LENT``.
 HOUSEHOLD = "predict.household"
 
 T = TypeVar("T")
@@ -240,9 +240,8 @@ class Stored:
         if mind.silence != base.silence:
             tx.meta.set_setting(SILENCE, mind.silence or None)
         if mind.household != base.household:
-            held = mind.household
-            configured = held == Household.configured(mind.settings.predict)
-            tx.meta.set_setting(HOUSEHOLD, None if configured else [held.mean, held.spread])
+            configured = mind.household == Household.configured(mind.settings.predict)
+            tx.meta.set_setting(HOUSEHOLD, None if configured else mind.household.spread)
         if base.version != PREDICTOR_VERSION:
             tx.meta.set_setting(VERSION, PREDICTOR_VERSION)
             base.version = PREDICTOR_VERSION
@@ -517,14 +516,13 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     others = others_totals = None
     if focus is not None:  # the claims of the agents not loaded, as silence and the household need them
         mask = np.zeros(len(rows), dtype=bool)
-        owned = not_owned = 0.0
-        for object_id, total, count in tx.beliefs.claim_census(focus):
+        for object_id, _, _ in tx.beliefs.claim_census(focus):
             mask[index[object_id]] = True
-            owned, not_owned = owned + total, not_owned + count - total
-        others = (mask, owned, not_owned)
         totals = tx.beliefs.claim_totals(focus)
-        others_totals = (np.array([t[0] for t in totals], dtype=float),
-                         np.array([t[1] for t in totals], dtype=float))
+        owned = np.array([t[0] for t in totals], dtype=float)
+        stated = np.array([t[1] for t in totals], dtype=float)
+        others = (mask, float(owned.sum()), float((stated - owned).sum()))
+        others_totals = (owned, stated)
     column = {a.id: j for j, a in enumerate(known)}
     stored_post = np.full(mind.claims.shape, np.nan)
     prior = np.full(mind.claims.shape, np.nan)
@@ -603,9 +601,10 @@ def stored_silence(settings: dict[str, Any]) -> float:
 
 def stored_household(settings: dict[str, Any], cfg: PredictConfig) -> Household:
     """The prior of every agent's intercept the stored priors use (:attr:`Mind.household`), from
-    the store's settings (absent: the configured one, ``cfg``)."""
+    the store's settings: the configured one, ``cfg``, with the stored width if any."""
+    configured = Household.configured(cfg)
     value = settings.get(HOUSEHOLD)
-    return Household.configured(cfg) if value is None else Household(float(value[0]), float(value[1]))
+    return configured if value is None else Household(configured.mean, float(value))
 
 
 def refit_focus(tx: Tx, obj: str, agents: Sequence[str]) -> list[str] | None:

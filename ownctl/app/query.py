@@ -21,15 +21,17 @@ if TYPE_CHECKING:
 
 def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str, Any]:
     """``{"object", "owners": [{"agent", "p", "source", "claim", "prior", "posterior"}],
-    "percept_scale"}``, likeliest first; ``p`` and ``source`` are the decision belief;
-    ``percept_scale`` is :func:`percept_scale`; ``rate_spread`` how far an agent's rate may stray
-    from the base rate (the width, in logits, of every intercept's prior, chosen on all agents'
-    claims), and ``rate_spread_configured`` its configured value; ``silence`` what an agent's silence about an
-    object others made claims about weighs, and ``silent`` the agents silent about this one while
-    it weighs (docs/architecture.md, section 5). With ``coverage``, each owner row also has
-    ``"conformal"``: its split-conformal set over {owns, does not own} (docs/asking.md, section 7),
-    and ``"claims_needed"`` says how many claimed objects an agent needs before its sets can leave
-    a label out."""
+    "percept_scale", "rate_spread", "rate_spread_configured", "silence", "silent"}``, likeliest
+    first; ``p`` and ``source`` are the decision belief; ``percept_scale`` how far percepts may
+    move the stored predictions, as a fraction of the full reach (the scale every agent's
+    predictor uses, chosen on all agents' claims); ``rate_spread`` how far an agent's rate may
+    stray from the base rate (the width, in logits, of every intercept's prior, chosen on all
+    agents' claims) and ``rate_spread_configured`` its configured value; ``silence`` what an
+    agent's silence about an object others made claims about weighs, and ``silent`` the agents
+    silent about this one while it weighs (docs/architecture.md, section 5). With ``coverage``,
+    each owner row also has ``"conformal"``: its split-conformal set over {owns, does not own}
+    (docs/asking.md, section 7), and ``"claims_needed"`` says how many claimed objects an agent
+    needs before its sets can leave a label out."""
     with ctx.read() as tx:
         try:
             object_id = tx.things.object(obj).id
@@ -43,7 +45,8 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
         weight = stored_silence(settings)
         spoken = any(r["claim"] is not None for r in rows)
         cfg = to_config(settings).predict
-        data: dict[str, Any] = {"object": obj, "owners": rows, "percept_scale": percept_scale(settings),
+        data: dict[str, Any] = {"object": obj, "owners": rows,
+                                "percept_scale": cfg.scales[stored_scale(settings)],
                                 "rate_spread": stored_household(settings, cfg).spread,
                                 "rate_spread_configured": cfg.intercept_scale,
                                 "silence": weight,
@@ -59,13 +62,6 @@ def owners(ctx: AppContext, obj: str, coverage: float | None = None) -> dict[str
             data["coverage"] = coverage
             data["claims_needed"] = claims_needed(coverage)
         return data
-
-
-def percept_scale(settings: dict[str, Any]) -> float:
-    """How far percepts may move the stored predictions, as a fraction of the full reach: the
-    scale every agent's predictor uses, chosen on all agents' claims (docs/architecture.md,
-    section 5), from the store's ``settings``."""
-    return to_config(settings).predict.scales[stored_scale(settings)]
 
 
 def owner_rows(tx: Tx, object_id: int) -> list[dict[str, Any]]:

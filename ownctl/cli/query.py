@@ -109,12 +109,12 @@ def owners(
             f"{', '.join(data['silent'])} said nothing of {obj} while others made claims about it: "
             f"their silence weighs {data['silence']:g} (people say \"mine\", seldom \"not mine\")")]))
     reach = data["percept_scale"]
-    if reach < 1 and any(o["source"] == "prediction" for o in data["owners"]):
+    predicted = any(o["source"] == "prediction" for o in data["owners"])
+    if reach < 1 and predicted:
         note = "\n".join(filter(None, [note, (
             f"percepts move these predictions at {reach:.0%} of their full reach: the claims so far say that "
             "position, colour and recency tell little of who owns what here")]))
-    if data["rate_spread"] < data["rate_spread_configured"] and \
-            any(o["source"] == "prediction" for o in data["owners"]):
+    if data["rate_spread"] < data["rate_spread_configured"] and predicted:
         note = "\n".join(filter(None, [note, (
             f"the claims so far say the agents own things about equally often: each agent's rate is held "
             f"within {data['rate_spread']:g} logits of the base rate ({data['rate_spread_configured']:g} "

@@ -223,11 +223,6 @@ class _Percepts:
             times[i] = spec.last_touch.get(agent, np.nan)
 
 
-def _rate(logit: float) -> float:
-    """The probability of a logit."""
-    return float(1.0 / (1.0 + np.exp(-logit)))
-
-
 def _names_rule(rule: Rule, pred: str, name: str) -> bool:
     return any(lit.atom == (pred, name) for lit in rule.literals)
 
@@ -482,9 +477,8 @@ class Mind:
             return
         fresh = set(self.agents) - self._stale
         if fresh and self._refit is not None and not fresh <= self._refit:
-            raise WholeMindNeeded(f"the household's prior of how often an agent owns things moves "
-                                  f"(rate {_rate(household.mean):.3f}, spread {household.spread:g}): "
-                                  "the agents' predictors are refitted")
+            raise WholeMindNeeded(f"the width of every agent's intercept prior moves to {household.spread:g} "
+                                  f"(was {self.household.spread:g}): the agents' predictors are refitted")
         self._stale.update(fresh)
         self._edited.update(fresh)
         self.household = household

@@ -40,6 +40,7 @@ from functools import lru_cache
 import numpy as np
 
 from ownctl.config import PredictConfig
+from ownctl.ownership.household import claim_totals
 
 #: The grid of each selection probability, ``c1`` and ``c0`` (cell midpoints of [0, 1]).
 _GRID = (np.arange(200) + 0.5) / 200
@@ -75,9 +76,8 @@ def selection_means(owned: float, not_owned: float, silent: float, prior: float)
 def census(claims: np.ndarray) -> tuple[np.ndarray, float, float]:
     """Of a claims table (objects x agents, NaN where none): which objects are examined (some
     claim about them), the claims' total weight for "owns" and for "does not own"."""
-    known = ~np.isnan(claims)
-    values = np.where(known, claims, 0.0)
-    return known.any(axis=1), float(values.sum()), float(np.where(known, 1.0 - values, 0.0).sum())
+    owned, stated = claim_totals(claims)
+    return ~np.isnan(claims).all(axis=1), float(owned.sum()), float((stated - owned).sum())
 
 
 def silent_loss(f: np.ndarray, kappa: float) -> float:
