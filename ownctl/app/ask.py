@@ -116,7 +116,8 @@ def put(ctx: AppContext, task: str = "trashAll", objects: Sequence[str] | None =
     best = ranked["questions"][0]
     if not worth_asking(best["gain"], ranked["min_gain"]):
         return Done(f"no question is worth asking about {task}: the best ({best['text']}) would save "
-                    f"{best['gain']:.3f} expected mistakes, below ask.min_gain {ranked['min_gain']:g}; "
+                    f"{shown_below(best['gain'], ranked['min_gain'])} expected mistakes, below ask.min_gain "
+                    f"{ranked['min_gain']:g}; "
                     "nothing was put", {**ranked, "put": None, "speaker": who})
     with ctx.write({"op": "ask.put", "question": best["text"], "speaker": who}, actor=who) as tx:
         table = pending_questions(tx)
@@ -128,3 +129,14 @@ def put(ctx: AppContext, task: str = "trashAll", objects: Sequence[str] | None =
             tx.meta.converse(speaker=who)
     return Done(f"asked {who or 'anyone'}: {best['text']} (expected gain {best['gain']:.3f} mistakes)",
                 {**ranked, "put": best, "speaker": who})
+
+
+def shown_below(gain: float, min_gain: float) -> str:
+    """``gain`` with three decimals, or with as many more as it takes not to read as ``min_gain`` or
+    above when it is below it (0.04996 against 0.05 is "0.04996", not "0.050")."""
+    for digits in range(3, 10):
+        text = f"{gain:.{digits}f}"
+        if gain >= min_gain or float(text) < min_gain:
+            return text
+    return f"{gain!r}"
+
