@@ -19,13 +19,12 @@ def run_ask(budgets: str, trials: int, seed: int, jobs: int, world: str | None, 
     """Run the asking experiment and print its tables or one JSON document."""
     from ownctl.app import experiment_ask
 
-    for what, value in (("--world", world), ("--csv", csv)):
-        if value is not None:
-            raise BadValue(f"{what} does not apply with --ask (the paper's blocks world, JSON or tables)")
+    if csv is not None:
+        raise BadValue("--csv does not apply with --ask (JSON or tables)")
     if learner != "ours":
         raise BadValue(f"--ask runs the default learner only, got --learner {learner!r}", ("ours",))
     result = experiment_ask.run(budgets, trials, seed, jobs, task, plot, kinds=kinds, temper=temper,
-                                read=read, ahead=ahead, decide=decide)
+                                read=read, ahead=ahead, decide=decide, world=world)
     if json_out:
         typer.echo(json.dumps(result, ensure_ascii=False))
     elif not quiet:
@@ -56,7 +55,7 @@ def render(result: dict[str, Any]) -> None:
             console.print(f"  budget {p['budget']}: ours - entropy = {p['ours_minus_entropy']:+.2f} "
                           f"± {p['ci95']:.2f} (paired over {result['trials']} trials; ours fewer in "
                           f"{p['better']}, more in {p['worse']})")
-    console.print(f"{result['trials']} trials per task, seed {result['seed']}, "
+    console.print(f"{result['trials']} trials per task on {result['world']}, seed {result['seed']}, "
                   f"min gain {result['min_gain']}, ours asks {','.join(result['kinds'])} on the rule-set "
                   f"posterior to the power {result['temper']}, ownership "
                   f"{'as the learner reads it' if result['read'] else 'as given'}, "

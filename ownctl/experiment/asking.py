@@ -37,6 +37,7 @@ from ownctl.config import ASK_AHEAD, ASK_KINDS, ASK_MIN_GAIN, ASK_READ, ASK_TEMP
 from ownctl.errors import BadValue, UnknownName
 from ownctl.experiment.cluster import executor
 from ownctl.experiment.kinematic import KinematicExecutor
+from ownctl.experiment.norms import WorldFactory
 from ownctl.experiment.online import TASK_CONDITIONS
 from ownctl.experiment.oracle import OracleInstructor
 from ownctl.experiment.runner import check_settings
@@ -66,6 +67,8 @@ STRATEGIES = ("ours", "entropy", "random")
 #: how ``ours`` asks during a task by default: the defaults of the ask.* settings
 DEFAULT_MIN_GAIN, TASK_KINDS, TASK_TEMPER, TASK_READ = ASK_MIN_GAIN, ASK_KINDS, ASK_TEMPER, ASK_READ
 TASK_AHEAD = ASK_AHEAD
+#: the report's name of the default world
+PAPER_TRIALS = "paper blocks world (Table 3's trials: budget 0 is Table 3)"
 
 
 class OracleAnswers:
@@ -246,10 +249,12 @@ class Policy:
         check_ahead(self.ahead)
 
 
-def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ours") -> tuple[int, int]:
-    """(mistakes, questions asked) of one run; the world is Table 3's trial ``[seed, c, t]``."""
+def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ours",
+            make_world: WorldFactory = paper_blocks_world) -> tuple[int, int]:
+    """(mistakes, questions asked) of one run; the world is Table 3's trial ``[seed, c, t]`` of
+    ``make_world`` (the paper's blocks world by default, or a world file's)."""
     cond = TASK_CONDITIONS[unit.condition]
-    world = paper_blocks_world(np.random.default_rng([seed, unit.condition, unit.trial]))
+    world = make_world(np.random.default_rng([seed, unit.condition, unit.trial]))
     settings = Settings(learn=LearnConfig(learner=learner), decide_rules=policy.decide)
     mind = Mind(world.agents, list(world.objects), world.areas, settings, Switches())
     asker = QuestionAsker(object_steps(get_task(cond.task).action), unit.strategy, unit.budget,
@@ -260,8 +265,9 @@ def ask_run(unit: Unit, seed: int, policy: Policy = Policy(), learner: str = "ou
     return report.mistakes, len(asker.asked)
 
 
-def _chunk(units: Sequence[Unit], seed: int, policy: Policy) -> list[tuple[Unit, tuple[int, int]]]:
-    return [(u, ask_run(u, seed, policy)) for u in units]
+def _chunk(units: Sequence[Unit], seed: int, policy: Policy,
+           make_world: WorldFactory) -> list[tuple[Unit, tuple[int, int]]]:
+    return [(u, ask_run(u, seed, policy, make_world=make_world)) for u in units]
 
 
 def mean_ci(values: Sequence[float]) -> tuple[float, float]:
@@ -288,10 +294,12 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
                    tasks: Sequence[str] = ("collectAll", "trashAll"), min_gain: float = DEFAULT_MIN_GAIN,
                    progress: Callable[[int, int], None] | None = None, kinds: Sequence[str] = TASK_KINDS,
                    temper: float = TASK_TEMPER, read: bool = TASK_READ, ahead: int = TASK_AHEAD,
-                   decide: str = "map") -> dict[str, Any]:
+                   decide: str = "map", make_world: WorldFactory = paper_blocks_world,
+                   world_name: str = PAPER_TRIALS) -> dict[str, Any]:
     """Mistakes per task and questions asked for every strategy and budget, on the same seeds.
 
-    Budget 0 is one run per trial shared by the strategies (Table 3 itself). Returns the JSON
+    Budget 0 is one run per trial shared by the strategies (Table 3 itself, on ``make_world``'s
+    trials: the paper's blocks world, or a world file's, named ``world_name``). Returns the JSON
     document: per task, per strategy, per budget the mean mistakes with its 95% interval and the
     mean number of questions asked, and the paired difference ours - entropy per budget.
     """
@@ -305,13 +313,13 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
     done: dict[Unit, tuple[int, int]] = {}
     if jobs == 1:
         for u in units:
-            done[u] = ask_run(u, seed, policy)
+            done[u] = ask_run(u, seed, policy, make_world=make_world)
             if progress:
                 progress(len(done), len(units))
     else:
         size = max(1, math.ceil(len(units) / (jobs * 4)))
         with executor(jobs) as (pool, _):
-            futures = [pool.submit(_chunk, units[i : i + size], seed, policy)
+            futures = [pool.submit(_chunk, units[i : i + size], seed, policy, make_world)
                        for i in range(0, len(units), size)]
             for fut in futures:
                 done.update(dict(fut.result()))
@@ -344,5 +352,5 @@ def ask_experiment(budgets: Sequence[int], trials: int, seed: int = 0, jobs: int
             "budgets": list(budgets), "strategies": list(STRATEGIES), "min_gain": min_gain,
             "kinds": list(policy.kinds), "temper": policy.temper, "read": policy.read,
             "ahead": policy.ahead, "decide": policy.decide, "tasks": results,
-            "world": "paper blocks world (Table 3's trials: budget 0 is Table 3)",
+            "world": world_name,
             "seconds": time.perf_counter() - start}
