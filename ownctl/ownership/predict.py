@@ -59,6 +59,7 @@ import numpy as np
 from ownctl.config import PredictConfig
 from ownctl.ownership.household import Household
 from ownctl.ownership.silence import silent_curvature, silent_loss, silent_target
+from ownctl.ownership.threads import one_thread_below
 
 MAX_NEWTON = 50
 TOLERANCE = 1e-10
@@ -144,9 +145,10 @@ class KernelOwnershipModel:
         intercept = household or Household.configured(cfg)
         design, penalty, mean = _system(X, cfg, scale, K, intercept)
         shift = np.zeros(len(p)) if offset is None else np.asarray(offset, dtype=float).reshape(len(p))
-        self.coef_ = _newton(design, p, penalty, mean, shift, self.kappa_)
-        self.evidence_ = log_evidence(X, p, cfg, scale, design @ self.coef_ + shift,
-                                      _prior_term(self.coef_, penalty, mean), K, self.kappa_, intercept)
+        with one_thread_below(design.shape[1]):
+            self.coef_ = _newton(design, p, penalty, mean, shift, self.kappa_)
+            self.evidence_ = log_evidence(X, p, cfg, scale, design @ self.coef_ + shift,
+                                          _prior_term(self.coef_, penalty, mean), K, self.kappa_, intercept)
         self.support_ = X
         if self.n_claims_ >= cfg.recalibrate_min and scale >= max(cfg.scales):
             self.recalibration_ = (design, p, penalty, shift)
@@ -165,8 +167,9 @@ class KernelOwnershipModel:
             return 1.0, 0.0
         design, p, penalty, shift = self.recalibration_
         claimed = ~np.isnan(p)
-        logits = loo_logits(design, p, penalty, self.coef_, shift, self.kappa_)[claimed]
-        return rescaling(logits, p[claimed], self.cfg.recalibrate_scale)
+        with one_thread_below(design.shape[1]):
+            logits = loo_logits(design, p, penalty, self.coef_, shift, self.kappa_)[claimed]
+            return rescaling(logits, p[claimed], self.cfg.recalibrate_scale)
 
     def decision_function(self, X: np.ndarray, offset: np.ndarray | None = None) -> np.ndarray:
         """The logit for each row of ``X`` (n,): ``a (f(x) + offset) + b``, with ``offset`` (n,) for a
