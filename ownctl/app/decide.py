@@ -100,7 +100,7 @@ def _reason(name: str, obj: str, step: dict[str, Any]) -> str:
         top = max(step["rules"], key=lambda r: r["p"], default=None)
         strongest = "" if top is None else f" (strongest: rule {top['id']} '{top['text']}', p={top['p']:.3g})"
         return (f"the rules of {step['action']} forbid it with p={step['p_forbidden']:.3g} {op} "
-                f"{step['threshold']:g}{rested(step)}{strongest}" + uncertain(step))
+                f"{step['threshold']:g}{rested(step)}{strongest}" + uncertain(step, obj))
     return f"no permission or rule speaks about {name} on {obj}"
 
 
@@ -114,13 +114,16 @@ def rested(step: dict[str, Any]) -> str:
     return f", marginalised over {plural(sets, 'rule set')} (decide.rules posterior)"
 
 
-def uncertain(step: dict[str, Any]) -> str:
-    """The warning that a decision rests on an uncertain rule ("" when it does not)."""
+def uncertain(step: dict[str, Any], obj: str) -> str:
+    """The warning that a decision rests on an uncertain rule ("" when it does not): the share of
+    the posterior over rule sets that says what the deciding rule says of ``obj`` (its support on
+    that object, which can be far below the rule's support on the examples that ``rules list``
+    shows)."""
     support = step.get("rule_support")
     if support is None or support >= SURE:
         return ""
-    return (f"; this rests on an uncertain rule: the posterior over rule sets supports it "
-            f"with p={support:.2f}")
+    return (f"; this rests on an uncertain rule: the posterior over rule sets says the same of "
+            f"{obj} with p={support:.2f}")
 
 
 def remember(ctx: AppContext, report: CheckReport) -> None:

@@ -121,13 +121,13 @@ def _step_sentence(step: dict[str, Any], obj: str) -> str:
         if len(rules) == 1 and step.get("rule_sets") is None:
             r = rules[0]
             return (f"rule {r['id']} '{r['text']}' holds with p={r['p']:.2g} ({op} {step['threshold']:g})"
-                    f"{_literals(r)}; it was {r['origin']}{uncertain(step)}")
+                    f"{_literals(r)}; it was {r['origin']}{uncertain(step, obj)}")
         each = "; ".join(f"rule {r['id']} '{r['text']}' p={r['p']:.2g}{_literals(r)} ({r['origin']})"
                          for r in rules)
         together = "together hold" if step.get("rule_sets") is None else "forbid it"
         listed = f": {each}" if each else "; the most probable rule set has no rule"
         return (f"the rules of {action} {together} with p={step['p_forbidden']:.2g} "
-                f"({op} {step['threshold']:g}){rested(step)}{listed}{uncertain(step)}")
+                f"({op} {step['threshold']:g}){rested(step)}{listed}{uncertain(step, obj)}")
     return f"no permission or rule speaks about {action} on {obj}"
 
 
