@@ -15,6 +15,7 @@ from typer.testing import CliRunner
 from ownctl.app import experiment as app_experiment
 from ownctl.cli.main import app as ownctl_app
 from ownctl.errors import OwnctlError
+from tests.cli.conftest import SMALL_WORLD
 
 ROOT = Path(__file__).resolve().parents[2]
 DESK = ROOT / "scenarios" / "desk-norms.toml"
@@ -187,42 +188,21 @@ def test_the_asking_experiment_reports_how_ours_reads_ownership() -> None:
     assert {r["strategy"] for r in doc["tasks"][0]["runs"]} == {"ours", "entropy", "random"}
 
 
-NOBODYS = """
-name = "three stray blocks"
-agents = ["alexis", "xuan"]
-norms = ["forbid trash if ownedBy any"]
-
-[[areas]]
-name = "home"
-box = [-0.1, -0.1, 0.1, 0.1]
-
-[[areas]]
-name = "trash"
-box = [-0.3, 0.6, 0.2, 1.1]
-%s
-"""
-BLOCK = """
-[[objects]]
-name = "%s"
-color = "%s"
-position = [%s, 0.0]
-"""
-
-
 @pytest.mark.slow
 def test_the_asking_experiment_runs_on_a_world_file(tmp_path: Path) -> None:
-    blocks = [("cup", "blue", "0.4, -0.4"), ("can", "green", "-0.5, 0.2"), ("box", "red", "0.5, 0.3")]
+    strays = SMALL_WORLD.replace("owners = { alexis = 1.0 }\n", "")  # nobody owns anything
+    assert "owners" not in strays
     world = tmp_path / "strays.toml"
-    world.write_text(NOBODYS % "".join(BLOCK % b for b in blocks))
+    world.write_text(strays)
     res = run("task", "--ask", "0,1", "--trials", "2", "--task", "trashAll", "--world", str(world), "--json")
     assert res.exit_code == 0, res.stderr
     doc = json.loads(res.stdout)
     assert doc["world"] == str(world)
     runs = {(r["strategy"], r["budget"]): r for r in doc["tasks"][0]["runs"]}
-    # nobody owns anything there, so nothing is forbidden: the robot trashes every block unasked
+    # nothing is forbidden there: the robot trashes every object unasked
     assert all(runs[s, 0]["per_trial"] == [0, 0] for s in ("ours", "entropy", "random"))
     assert runs["entropy", 1]["questions"] <= 1 and len(runs["ours", 1]["per_trial"]) == 2
     without = tmp_path / "nobin.toml"
-    without.write_text(NOBODYS.replace('name = "trash"', 'name = "shelf"') % BLOCK % blocks[0])
+    without.write_text(strays.replace('name = "trash"', 'name = "shelf"'))
     res = run("task", "--ask", "1", "--trials", "1", "--task", "trashAll", "--world", str(without))
     assert res.exit_code == 1 and "the task needs an area 'trash'" in res.stderr
