@@ -516,8 +516,7 @@ def load(tx: Tx, now: float, only: Sequence[str] | None = None, permitted: bool 
     others = others_totals = None
     if focus is not None:  # the claims of the agents not loaded, as silence and the household need them
         mask = np.zeros(len(rows), dtype=bool)
-        for object_id, _, _ in tx.beliefs.claim_census(focus):
-            mask[index[object_id]] = True
+        mask[[index[o] for o in tx.beliefs.claimed_objects(focus)]] = True
         totals = tx.beliefs.claim_totals(focus)
         owned = np.array([t[0] for t in totals], dtype=float)
         stated = np.array([t[1] for t in totals], dtype=float)

@@ -369,8 +369,7 @@ def _remark(words: str, ctx: Context) -> bool:
     question, use no action word as a verb and hold no qualifier and no hedge below certainty."""
     if words in ASIDES:
         return True
-    names = {n.lower() for n in (*ctx.agents, *ctx.colors, *ctx.areas, *ctx.categories)}
-    names |= {o.lower() for o in ctx.objects if o != ctx.about}
+    names = ctx.names(besides=ctx.about)
     for word in words.split():
         if word in QUALIFIERS or word in names or word.removesuffix("s") in names:
             return False

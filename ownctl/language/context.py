@@ -46,6 +46,12 @@ class Context:
     facts: Mapping[str, Facts] = field(default_factory=dict, compare=False)
     mentioned: str | None = None
 
+    def names(self, besides: str | None = None) -> frozenset[str]:
+        """Every name the parser may resolve (agents, objects, colours, areas, categories), in lower
+        case, leaving out the object ``besides``."""
+        return frozenset(n.lower() for n in (*self.agents, *(o for o in self.objects if o != besides),
+                                             *self.colors, *self.areas, *self.categories))
+
 
 @dataclass(frozen=True)
 class Understanding:

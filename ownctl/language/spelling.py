@@ -87,8 +87,7 @@ def _near(word: str, choices: Iterable[str]) -> list[str]:
 
 def known_words(ctx: Context) -> set[str]:
     """The vocabulary and every name of the context (lower case)."""
-    names = {n.lower() for n in (*ctx.agents, *ctx.objects, *ctx.colors, *ctx.areas, *ctx.categories)}
-    return set(vocabulary()) | names
+    return set(vocabulary()) | ctx.names()
 
 
 def candidates(word: str, ctx: Context) -> list[str]:

@@ -223,7 +223,7 @@ def _has_content(text: str, ctx: Context) -> bool:
     that names an action, an owner, a negation or a thing, or one the parser does not know (it may
     be a name: "that's Bob's")."""
     known = spelling.vocabulary()
-    names = {n.lower() for n in (*ctx.agents, *ctx.objects, *ctx.colors, *ctx.areas, *ctx.categories)}
+    names = ctx.names()
     words = normalize(text)
     if words in ASIDES:
         return False

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ownctl.config import PredictConfig
+from ownctl.ownership.link import logit, sigmoid
 
 #: Gauss-Hermite nodes and weights (for integrals against exp(-x^2)), centred and scaled on each
 #: agent's integrand (adaptive quadrature, as for generalised linear mixed models).
@@ -53,8 +54,7 @@ class Household:
     @classmethod
     def configured(cls, cfg: PredictConfig) -> Household:
         """The prior without the household's claims: the configured base rate and intercept scale."""
-        q = min(max(cfg.base_rate, 1e-6), 1 - 1e-6)
-        return cls(math.log(q / (1 - q)), cfg.intercept_scale)
+        return cls(logit(cfg.base_rate), cfg.intercept_scale)
 
 
 def household_prior(owned: Sequence[float] | np.ndarray, stated: Sequence[float] | np.ndarray,
@@ -99,13 +99,13 @@ def spread_evidence(owned: np.ndarray, stated: np.ndarray, mean: float, spread: 
 
     mode = np.zeros(len(k))
     for _ in range(50):  # Newton's method on a concave function of z, one per agent
-        rate = 1.0 / (1.0 + np.exp(-(mean + spread * mode)))
+        rate = sigmoid(mean + spread * mode)
         slope = spread * (k - n * rate) - mode
         curve = spread**2 * n * rate * (1.0 - rate) + 1.0
         mode = mode + slope / curve
         if np.max(np.abs(slope / curve)) < 1e-12:
             break
-    rate = 1.0 / (1.0 + np.exp(-(mean + spread * mode)))
+    rate = sigmoid(mean + spread * mode)
     width = math.sqrt(2.0) / np.sqrt(spread**2 * n * rate * (1.0 - rate) + 1.0)
     nodes, weights = _HERMITE
     z = mode[:, None] + width[:, None] * nodes[None, :]

@@ -58,6 +58,7 @@ import numpy as np
 
 from ownctl.config import PredictConfig
 from ownctl.ownership.household import Household
+from ownctl.ownership.link import logit, sigmoid
 from ownctl.ownership.silence import silent_curvature, silent_loss, silent_target
 from ownctl.ownership.threads import one_thread_below
 
@@ -69,16 +70,6 @@ TOLERANCE = 1e-10
 #: whose priors another version wrote refits them on its next load (ownctl/app/mindstore.py), so a
 #: store keeps meaning what a Mind told the same things would believe.
 PREDICTOR_VERSION = 5
-
-
-def _sigmoid(z: np.ndarray) -> np.ndarray:
-    return 0.5 * (1.0 + np.tanh(0.5 * z))
-
-
-def _logit(p: float) -> float:
-    """log(p / (1 - p)) of a probability kept inside (1e-6, 1 - 1e-6)."""
-    q = float(np.clip(p, 1e-6, 1 - 1e-6))
-    return float(np.log(q / (1.0 - q)))
 
 
 def rbf_kernel(A: np.ndarray, B: np.ndarray, gamma: float) -> np.ndarray:
@@ -142,13 +133,12 @@ class KernelOwnershipModel:
             return self
         cfg = self.cfg
         K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
-        intercept = household or Household.configured(cfg)
-        design, penalty, mean = _system(X, cfg, scale, K, intercept)
+        design, penalty, mean = _system(X, cfg, scale, K, household)
         shift = np.zeros(len(p)) if offset is None else np.asarray(offset, dtype=float).reshape(len(p))
         with one_thread_below(design.shape[1]):
             self.coef_ = _newton(design, p, penalty, mean, shift, self.kappa_)
             self.evidence_ = log_evidence(X, p, cfg, scale, design @ self.coef_ + shift,
-                                          _prior_term(self.coef_, penalty, mean), K, self.kappa_, intercept)
+                                          _prior_term(self.coef_, penalty, mean), K, self.kappa_, household)
         self.support_ = X
         if self.n_claims_ >= cfg.recalibrate_min and scale >= max(cfg.scales):
             self.recalibration_ = (design, p, penalty, shift)
@@ -188,9 +178,9 @@ class KernelOwnershipModel:
         if not self.trained_:
             if offset is None:
                 return np.full(len(X), self.base_)
-            out = _sigmoid(_logit(self.base_) + self._offset(offset, len(X)))
+            out = sigmoid(logit(self.base_) + self._offset(offset, len(X)))
         else:
-            out = _sigmoid(self.decision_function(X, offset))
+            out = sigmoid(self.decision_function(X, offset))
         return np.where(np.abs(out - 0.5) > 1e-6, out, 0.5 - 1e-6)
 
     def _offset(self, offset: np.ndarray | None, n: int) -> np.ndarray:
@@ -247,7 +237,7 @@ def fit_shared_recency(recency: np.ndarray, p: np.ndarray,
         return None
     design = np.stack([r, np.ones(len(r))], axis=1)
     penalty = np.diag([1.0 / cfg.C, 1.0 / cfg.intercept_scale**2])
-    mean = np.array([0.0, _logit(cfg.base_rate)])
+    mean = np.array([0.0, logit(cfg.base_rate)])
     slope, intercept = _newton(design, y, penalty, mean, np.zeros(len(r)))
     return SharedRecency(rounded(float(slope), cfg.share_step), float(intercept))
 
@@ -305,9 +295,9 @@ def log_evidence(X: np.ndarray, p: np.ndarray, cfg: PredictConfig, scale: float,
     NaN are silences weighed by ``kappa`` (their curvature where convex)."""
     n = len(p)
     K = rbf_kernel(X, X, cfg.gamma) if kernel is None else kernel
-    spread = cfg.intercept_scale if household is None else household.spread
+    spread = (household or Household.configured(cfg)).spread
     cov = scale * cfg.C * (K + X @ X.T) + spread**2
-    s = _sigmoid(f)
+    s = sigmoid(f)
     root = np.sqrt(_curvature(s, p, kappa))
     chol = np.linalg.cholesky(np.eye(n) + root[:, None] * cov * root[None, :])
     return -_loss(f, p, kappa) - prior_term - float(np.sum(np.log(np.diag(chol))))
@@ -377,7 +367,7 @@ def loo_logits(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, theta: np
     Sherman-Morrison update of ``H`` without row ``i``). Exact for a quadratic objective, and
     close to a refit for logistic ones (tests/ownership/test_ownership_recalibrate.py)."""
     f = design @ theta + offset
-    s = _sigmoid(f)
+    s = sigmoid(f)
     w = _curvature(s, p, kappa)
     hess = design.T @ (design * w[:, None]) + penalty + 1e-9 * np.eye(len(theta))
     # d_i' H^+ d_i from one symmetric eigendecomposition (H's pseudo-inverse, as a least-squares
@@ -429,7 +419,7 @@ def _newton(design: np.ndarray, p: np.ndarray, penalty: np.ndarray, mean: np.nda
     current = objective(theta)
     ridge = 1e-9 * np.eye(len(theta))
     for _ in range(MAX_NEWTON):
-        s = _sigmoid(design @ theta + offset)
+        s = sigmoid(design @ theta + offset)
         grad = design.T @ _residual(s, p, kappa) + penalty @ (theta - mean)
         hess = design.T @ (design * _curvature(s, p, kappa)[:, None]) + penalty + ridge
         step = _newton_step(hess, grad)

@@ -1,11 +1,10 @@
-"""One BLAS thread for the predictors' small linear algebra (docs/architecture.md, section 5).
+"""One BLAS thread for the predictors' small linear algebra (docs/architecture.md, section 10).
 
 An agent's fit solves systems of the size of its claimed objects plus a few features: about 30
 unknowns on the paper's 20-object world. A multi-threaded BLAS hands such a system to threads
 that have gone to sleep between instructions, and waking them costs far more than the solve: on a
 2-core machine whose cores ran other work, a profile of 60 claims on the paper's world found each
-29 x 29 symmetric eigendecomposition taking 8 ms on two threads and 0.2 ms on one
-(docs/architecture.md, section 10). Below
+29 x 29 symmetric eigendecomposition taking 8 ms on two threads and 0.2 ms on one. Below
 :data:`SMALL` unknowns the predictors therefore run on one thread; larger systems keep the BLAS
 library's own setting, where threads pay for themselves.
 """

@@ -518,15 +518,14 @@ class Beliefs(_Part):
             out.extend(self._rows(query.where(ownership.c.object_id.in_(ids[start : start + CHUNK]))))
         return out
 
-    def claim_census(self, besides_agents: Sequence[int] = ()) -> list[tuple[int, float, int]]:
-        """Per object some claim is about: its id, the claims' total probability and their count,
-        over the agents other than ``besides_agents`` (one grouped query over the claims)."""
+    def claimed_objects(self, besides_agents: Sequence[int] = ()) -> list[int]:
+        """The ids of the objects some claim is about, over the agents other than ``besides_agents``
+        (one query over the claims; their totals per agent: :meth:`claim_totals`)."""
         c = ownership.c
-        query = (select(c.object_id, func.sum(c.claim_p), func.count(c.claim_p))
-                 .where(c.claim_p.is_not(None)).group_by(c.object_id))
+        query = select(c.object_id).where(c.claim_p.is_not(None)).distinct()
         if besides_agents:
             query = query.where(c.agent_id.not_in(list(besides_agents)))
-        return [(int(o), float(total), int(n)) for o, total, n in self._rows(query)]
+        return [int(o) for (o,) in self._rows(query)]
 
     def claim_totals(self, besides_agents: Sequence[int] = ()) -> list[tuple[float, int]]:
         """Per agent with claims, other than ``besides_agents``: the claims' total probability and

@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 
 from ownctl.config import PredictConfig
-from ownctl.ownership.predict import KernelOwnershipModel, _sigmoid, _system, loo_logits, rescaling
+from ownctl.ownership.link import sigmoid
+from ownctl.ownership.predict import KernelOwnershipModel, _system, loo_logits, rescaling
 
 RAW = replace(PredictConfig(), recalibrate_min=10**9)  # never recalibrates
 
@@ -45,10 +46,10 @@ def test_leave_one_out_logits_are_much_closer_to_refits_than_the_fitted_logits(s
 def test_the_rescaling_is_the_optimum_of_its_penalised_objective(seed: int) -> None:
     rng = np.random.default_rng(seed)
     f = rng.normal(scale=2.0, size=20)
-    y = _sigmoid(3.0 * f - 0.5)  # soft targets sharper than the logits
+    y = sigmoid(3.0 * f - 0.5)  # soft targets sharper than the logits
     scale = 1.0
     a, b = rescaling(f, y, scale)
-    s = _sigmoid(a * f + b)
+    s = sigmoid(a * f + b)
     grad = np.array([np.sum((s - y) * f) + (a - 1.0) / scale**2, np.sum(s - y) + b / scale**2])
     assert np.abs(grad).max() < 1e-6
     assert a > 1.0  # the targets are sharper than the logits say
