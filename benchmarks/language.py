@@ -50,7 +50,7 @@ from ownctl.language.lexicon import COLORS  # noqa: E402
 from ownctl.logic.rules import parse_norm  # noqa: E402
 
 DATA = ROOT / "benchmarks" / "data" / "utterances.toml"
-GROUPS = ("claims", "denials", "reprimands", "norms", "questions", "tasks", "answers")
+GROUPS = ("claims", "denials", "reprimands", "norms", "questions", "tasks", "answers", "social")
 BAR = 0.90  # share understood, overall and in every group
 # Sentences of the timing utterances, repeated until the wanted length.
 TIMING_SENTENCES = (

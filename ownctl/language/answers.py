@@ -424,11 +424,11 @@ def _parsed(words: str, ctx: Context, asked: str | None) -> tuple[Instruction, .
 
 def _refused_by_parser(words: str, ctx: Context) -> bool:
     """True if the parser reads nothing in ``words`` (it refuses them, or reads only someone introducing
-    themself), so reading them otherwise leaves out nothing it would store."""
+    themself or how the speaker is), so reading them otherwise leaves out nothing it would store."""
     from ownctl.language.understand import understand
 
     try:
-        return understand(words, ctx).intent == "introduction"
+        return understand(words, ctx).intent in ("introduction", "remark")
     except NotUnderstood:
         return True
     except OwnctlError:

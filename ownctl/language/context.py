@@ -58,9 +58,10 @@ class Understanding:
     """What an utterance means.
 
     ``intent`` is one of ``reprimand``, ``claim``, ``permission``, ``norm``, ``introduction``,
-    ``question``, ``request``, ``task``, ``greeting``, ``thanks``; ``instructions`` are executed in
-    order in one transaction; ``reply`` is what the robot answers; ``form`` names the grammar rule
-    that matched (or several, joined by ``+``, for a multi-sentence utterance).
+    ``question``, ``request``, ``task``, ``greeting``, ``thanks``, ``remark`` (how the speaker is:
+    "I'm tired"); ``instructions`` are executed in order in one transaction; ``reply`` is what the
+    robot answers; ``form`` names the grammar rule that matched (or several, joined by ``+``, for
+    a multi-sentence utterance).
     """
 
     intent: str

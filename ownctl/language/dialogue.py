@@ -1,4 +1,4 @@
-"""Dialogue: questions, introductions, requests, whole tasks, greetings and thanks.
+"""Dialogue: questions, introductions, requests, whole tasks, greetings, thanks and remarks.
 
 Documented choices: "Can you throw this away?" asks whether it is permitted (``check``), while
 "Throw this away" / "Could you throw this away?" is a :class:`Request` (a check the application
@@ -24,7 +24,7 @@ from ownctl.language.instructions import (
     Request,
     RunTask,
 )
-from ownctl.language.lexicon import NOT_NAMES, actions_regex
+from ownctl.language.lexicon import NOT_NAMES, STATE_PHRASES, actions_regex, alternation, is_state
 from ownctl.language.resolve import Resolver
 
 GRAMMAR = Grammar()
@@ -159,11 +159,14 @@ def introduce(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
     """"I'm Jake", "Hi, I'm Jake", "Hello Baxter, I'm Jake", "My name is Jake", "It's Jake here".
 
     "I am" and "it is" also say how someone or something is ("I'm tired", "It's broken"): after
-    "I am" a word of :data:`NOT_NAMES` (a state) is no name; after "it is" or "this is" only a
+    "I am" a word of :data:`NOT_NAMES` or one :func:`is_state` reads as a state ("I'm exhausted")
+    is no name, unless it names a known agent; after "it is" or "this is" only a
     known agent is, or a name followed by "here" or "speaking" ("This is Sam speaking"), so that
     a remark about an object never adds an agent."""
     name = m["name"]
     if name in NOT_NAMES or r.colour(name) or r.is_object(name):
+        return None
+    if m["lead"] == "i am" and is_state(name) and not r.is_agent(name):
         return None
     if m["lead"] in ("it is", "this is") and not m["tail"] and not r.is_agent(name):
         return None
@@ -221,4 +224,30 @@ def greeting(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
 @GRAMMAR.rule("thanks", r"(?:thanks|thank you)(?: very much| so much| a lot)?(?: .*)?")
 def thanks(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Thank you": nothing to do but answer."""
+    return ()
+
+
+_DEGREE = (r"(?:so|really|very|a bit|a little|a little bit|quite|pretty|too|kind of|sort of|totally|"
+           r"completely|super|extremely|just|rather|absolutely|incredibly|utterly|terribly|awfully|"
+           r"a tad|somewhat|fairly|still|getting|a lot|much|way) ")
+_REMARK_TAIL = (r"(?: (?:today|tonight|now|right now|at the moment|again|already|in here|out here|"
+                r"these days|lately|this morning|this afternoon|this evening|after work|to be honest|"
+                r"about (?P<about>\w+(?: \w+){0,3})))?")
+
+
+@GRAMMAR.rule(
+    "remark",
+    rf"(?:i am|i feel|i am feeling|i have been|i was|i am getting) (?:not )?(?:feeling )?(?:{_DEGREE})*"
+    rf"(?:(?P<state>[a-z]+)(?: out| up)?|(?P<phrase>{alternation(STATE_PHRASES)})){_REMARK_TAIL}",
+)
+def remark(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"I'm exhausted", "I feel sick", "I'm so tired today", "I'm in a hurry": how the speaker is
+    (:func:`ownctl.language.lexicon.is_state`) stores nothing; the robot acknowledges it. A word
+    that is no state declines ("I'm Jake" is an introduction), and so does a remark about a known
+    object or agent ("I'm worried about the mug, it's Jake's": there "it" is the mug)."""
+    state = m["state"]
+    if state is not None and (not is_state(state) or r.is_agent(state)):
+        return None
+    if m["about"] and any(r.is_object(w) or r.is_agent(w) for w in m["about"].split()):
+        return None  # about something the robot knows: not small talk
     return ()

@@ -67,26 +67,60 @@ NOT_NOUNS = frozenset({
     "have", "needs", "need", "stay", "stays", "remain", "remains", *CLASS_HEADS,
 }) - {"thing"}
 
-#: Words that cannot be a name in "I'm NAME" ("I'm sorry", "I'm done"): how a person or a thing
-#: is (feelings, states, conditions, worth), and words that point rather than name.
-NOT_NAMES = frozenset({
-    "sorry", "done", "back", "here", "ok", "fine", "good", "ready", "not", "sure", "going",
-    "leaving", "finished", "busy", "afraid", "glad", "happy", "the", "a", "an", "mine", "yours",
-    "it", "this", "that", "allowed", "robot", "baxter", "you", "me", "red", "someone", "nobody",
-    "anyone", "everyone",
-    # how a person is
-    "tired", "hungry", "thirsty", "sleepy", "sick", "ill", "well", "cold", "hot", "warm", "bored",
-    "angry", "sad", "upset", "annoyed", "worried", "scared", "confused", "lost", "late", "early",
-    "home", "out", "in", "off", "away", "coming", "working", "cooking", "eating", "sleeping",
-    "listening", "serious", "kidding", "joking", "okay", "alright", "right", "wrong", "free",
-    "new", "alone", "hurt", "cool", "great", "fantastic", "excited", "pleased", "grateful",
+#: How a person is, said after "I am" or "I feel" ("I'm tired", "I feel sick", "I'm running
+#: late"): a remark that stores nothing (``dialogue.remark``), and never a name after "I am"
+#: (``dialogue.introduce``). :func:`is_state` also reads their endings.
+STATE_WORDS = frozenset({
+    "sorry", "done", "back", "here", "ok", "fine", "good", "ready", "going", "leaving", "finished",
+    "busy", "afraid", "glad", "happy", "tired", "hungry", "thirsty", "sleepy", "sick", "ill", "well",
+    "cold", "hot", "warm", "bored", "angry", "sad", "upset", "annoyed", "worried", "scared",
+    "confused", "lost", "late", "early", "home", "out", "off", "away", "coming", "working",
+    "cooking", "eating", "sleeping", "listening", "serious", "kidding", "joking", "okay", "alright",
+    "free", "alone", "hurt", "cool", "great", "fantastic", "excited", "pleased", "grateful",
+    "starving", "freezing", "boiling", "sweating", "shaking", "dying", "struggling", "melting",
+    "waiting", "resting", "relaxing", "studying", "travelling", "traveling", "moving", "packing",
+    "better", "worse", "awake", "asleep", "alive", "stuck", "beat", "wrecked", "broke", "prepared",
+    "ashamed", "alarmed", "overwhelmed", "charmed", "informed", "thrilled", "sore", "dizzy",
+    "grumpy", "cranky", "moody", "lonely", "calm", "knackered", "shattered", "wet", "soaked", "dry",
+    "full", "stuffed", "unwell", "awful", "terrible", "mad", "fed", "worn", "burnt", "burned",
+    "wiped", "impressed", "interested",
+})
+
+#: States of more than one word ("I'm in a hurry", "I'm off to bed").
+STATE_PHRASES = (
+    "in a hurry", "in a rush", "on my way", "on my way out", "out of breath", "running late",
+    "off to bed", "off to work", "off to school", "off to sleep", "off to lunch", "off now",
+    "done for today", "done for the day", "under the weather", "all set",
+)
+
+#: Endings of English participles and adjectives that no common given name has, read in words of
+#: six letters or more ("frustrated", "stressed", "hopeful", "nervous", "miserable"). Names such
+#: as Alfred, Mildred or Mohammed end in -red or -med, and Sterling or Xing in -ing, so those
+#: endings are not read; states that have them are words of :data:`STATE_WORDS`.
+STATE_ENDINGS = ("ted", "ded", "sed", "ked", "ped", "zed", "hed", "ved", "ned", "led", "ged", "ced",
+                 "xed", "ied", "yed", "ful", "less", "ous", "able", "ible", "ive")
+
+#: Words that cannot be a name in "I'm NAME" ("I'm sorry", "I'm done"): how a person is
+#: (:data:`STATE_WORDS`), how a thing is (condition, worth), and words that point rather than name.
+NOT_NAMES = STATE_WORDS | frozenset({
+    "not", "sure", "the", "a", "an", "mine", "yours", "it", "this", "that", "allowed", "robot",
+    "baxter", "you", "me", "red", "someone", "nobody", "anyone", "everyone", "in", "right", "wrong",
+    "new",
     # how a thing is
-    "broken", "old", "empty", "full", "clean", "dirty", "junk", "rubbish", "garbage", "trash",
-    "useless", "worn", "torn", "dead", "expired", "fresh", "used", "damaged",
+    "broken", "old", "empty", "clean", "dirty", "junk", "rubbish", "garbage", "trash",
+    "useless", "torn", "dead", "expired", "fresh", "used", "damaged",
     "missing", "ruined", "nothing", "everything", "something", "fragile", "heavy", "light",
     "expensive", "cheap", "precious", "important", "valuable", "worthless", "gone", "open",
     "closed", "ours", "theirs", "his", "hers", "there", "true", "false",
 })
+
+
+def is_state(word: str) -> bool:
+    """True if ``word`` (one normalised word) says how someone is ("exhausted", "starving") rather
+    than naming them: a word of :data:`STATE_WORDS`, or of six letters or more with one of
+    :data:`STATE_ENDINGS`."""
+    return word in STATE_WORDS or (len(word) >= 6 and word.isalpha() and word.endswith(STATE_ENDINGS))
+
 
 #: Default colour words (``Context.colors``); "none" is a colour value but never an adjective.
 COLORS = frozenset({
@@ -150,6 +184,7 @@ ASIDES = frozenset({
 DISCOURSE = frozenset({
     "so", "and", "but", "ok", "well", "yes", "yeah", "yep", "sure", "right", "also", "then",
     "anyway", "oh", "ah", "alright", "actually", "listen", "look", "see", "just", "and also",
+    "ugh", "phew", "whew", "gosh", "argh", "hmm", "um", "uh", "wow", "aw", "oops",
 })
 
 #: When something happened, said after a statement without changing what it stores ("I gave it to

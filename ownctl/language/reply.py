@@ -70,4 +70,6 @@ def reply(intent: str, instructions: Sequence[Instruction]) -> str:
         return f"Hi, I'm {ROBOT}."
     if intent == "thanks":
         return "You're welcome."
+    if intent == "remark":
+        return "I see."
     return " ".join(filter(None, (_question(i) for i in instructions)))

@@ -78,7 +78,7 @@ _CHUNK_END = re.compile(r"[.!?;,:]+|\s[-\u2013\u2014]+\s|[\u2013\u2014]")
 #: (two sentences joined: "the cup is mine and the mug is Jake's").
 _CONJUNCTION = re.compile(r"\s(?=(?:and|but)\s)", re.IGNORECASE)
 _SENTENCE_END = re.compile(r"[.!?;]")
-_SOCIAL = ("greeting", "thanks", "introduction")
+_SOCIAL = ("greeting", "thanks", "introduction", "remark")
 _DISCOURSE = re.compile(rf"^(?:{alternation(DISCOURSE)} )+")
 _HEDGE = alternation(tuple(HEDGES))
 _LEAD_HEDGE = re.compile(rf"^(?P<h>{_HEDGE}) ")

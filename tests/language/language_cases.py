@@ -138,6 +138,9 @@ TABLE: list[tuple[str, str, tuple[str, ...]]] = [
     ("Hello Baxter, I'm Jake", "introduction", ("agent add Jake",)),
     ("My name is Jake", "introduction", ("agent add Jake",)),
     ("hi baxter i'm olivier", "introduction", ("agent add olivier",)),
+    ("I'm Rasheed", "introduction", ("agent add rasheed",)),  # -ed, but -eed: a name
+    ("I'm Manfred", "introduction", ("agent add manfred",)),
+    ("I'm Bing", "introduction", ("agent add bing",)),
     # questions
     ("Whose is this?", "question", ("owners wallet",)),
     ("Who owns that?", "question", ("owners wallet",)),
@@ -170,6 +173,13 @@ TABLE: list[tuple[str, str, tuple[str, ...]]] = [
     # small talk and several sentences
     ("Hello", "greeting", ()),
     ("Thank you, Baxter!", "thanks", ()),
+    ("I'm sorry", "remark", ()),
+    ("I'm knackered", "remark", ()),
+    ("I'm completely worn out today", "remark", ()),
+    ("I feel a little dizzy", "remark", ()),
+    ("I'm on my way out", "remark", ()),
+    ("I'm not feeling hopeful", "remark", ()),
+    ("Phew, I'm so disappointed", "remark", ()),
     ("Hi, I'm Jake. Can you throw this away?", "question", ("agent add Jake", "check trash wallet")),
     ("That's mine. Don't throw it away!", "reprimand", _MINE),
     ("It's Jake's. Whose is the cup?", "claim", ("claim wallet Jake", "owners cup")),

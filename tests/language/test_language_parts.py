@@ -124,4 +124,4 @@ def test_rules_are_ordered_statements_first_and_documented() -> None:
     for rule in RULES:
         assert rule.build.__doc__, rule.name
         assert rule.intent in {"reprimand", "claim", "permission", "norm", "introduction", "question",
-                               "request", "task", "greeting", "thanks"}
+                               "request", "task", "greeting", "thanks", "remark"}
