@@ -148,7 +148,9 @@ NO = ("no", "no you may not", "you may not", "no you can not", "you can not", "d
       "no chance", "not on your life", "hell no", "negative", "no sir", "that is not a rule",
       "that is not the rule", "it is not a rule", "there is no such rule", "no such rule",
       "there is no rule like that", "we do not have that rule", "we have no such rule",
-      "that is not how it works", "that is not it", "it does not at all", "it never does")
+      "that is not how it works", "that is not it", "it does not at all", "it never does",
+      "not yet", "no not yet", "not just yet", "not now", "no not now", "not right now",
+      "not at the moment", "not for now", "not today")
 PARTLY = ("partly", "sometimes", "not always", "it depends", "in part", "only sometimes", "some of them",
           "partially", "in some cases", "depends", "mostly", "usually", "generally", "often", "mostly yes",
           "mostly not", "not usually", "rarely", "seldom", "occasionally", "that depends", "not quite",

@@ -2,7 +2,7 @@
 
 *Owner phrases* follow "this is ..." / "this belongs to ...": ``[hedge] [not] [only] OWNER [now]
 [alone] [and ALSO] [too] [not OTHER]`` ("probably mine", "mine now, not Xuan's", "Jake's alone",
-"mine and Jake's": joint ownership, two claims).
+"mine and Jake's" or "Mia and Jake's": joint ownership, two claims).
 
 *Class phrases* describe a set of objects as literals about the target object:
 ``[determiner] premodifier* HEAD postmodifier*`` where premodifiers are possessors and colours
@@ -70,7 +70,10 @@ def owners(rest: str, possessive: bool, negated: bool, r: Resolver) -> list[Owne
     if m is None:
         return None
     word = m["owner"]
-    if possessive != (word in ("mine", "ours") or word in POSSESSIVE_PRONOUNS or word.endswith(" 's")):
+    said = word in ("mine", "ours") or word in POSSESSIVE_PRONOUNS or word.endswith(" 's")
+    # "Mia and Jake's": one possessive ending for two owners (joint ownership, as "Mia's and Jake's")
+    joint = possessive and not said and (m["also"] or "").endswith(" 's")
+    if possessive != said and not joint:
         return None
     neg = negated ^ bool(m["neg"])
     exclusive = bool(m["only"]) or bool(m["excl"].strip())

@@ -76,6 +76,9 @@ TABLE: list[tuple[str, str, tuple[str, ...]]] = [
     ("It is mine and mine alone", "claim", ("claim wallet casey --only",)),
     ("This belongs only to me", "claim", ("claim wallet casey --only",)),
     ("It's mine and Jake's", "claim", ("claim wallet casey", "claim wallet Jake")),
+    ("That's Xuan and Jake's", "claim", ("claim wallet xuan", "claim wallet Jake")),  # one 's, two owners
+    ("The cup is Jake and Xuan's, not mine", "claim",
+     ("claim cup Jake", "claim cup xuan", "claim cup casey --not")),
     ("It's probably Jake's", "claim", ("claim wallet Jake --p 0.8",)),
     ("I think that's mine", "claim", ("claim wallet casey --p 0.8",)),
     # object-specific permissions

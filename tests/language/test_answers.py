@@ -25,7 +25,7 @@ def test_yes_to_may_allows(words: str) -> None:
 @pytest.mark.parametrize("words", ["no", "No, you may not!", "don't", "you can't", "No way, don't!",
                                    "Nope - never.", "Of course not.", "no thanks", "Absolutely not!",
                                    "No, don't throw it away", "Don't throw the mug away",
-                                   "no, don't do that"])
+                                   "no, don't do that", "Not right now.", "No, not just yet"])
 def test_no_to_may_forbids(words: str) -> None:
     assert answer_instructions(words, MAY, CTX) == (Permission("trash", "mug", forbid=True),)
 
