@@ -57,6 +57,7 @@ from functools import cached_property
 import numpy as np
 
 from ownctl.config import PredictConfig
+from ownctl.logic.kept import Kept
 from ownctl.ownership.household import Household
 from ownctl.ownership.link import logit, sigmoid
 from ownctl.ownership.silence import silent_curvature, silent_loss, silent_target
@@ -256,11 +257,50 @@ def fit_scales(X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None,
     """One agent's model fitted at each of ``cfg.scales`` (their :attr:`evidence_` says how well
     each prior explains the claims; :func:`pooled_scale` picks one for every agent); rows whose
     target is NaN are silences weighed by ``kappa``, ``household`` the intercept's prior
-    (:meth:`KernelOwnershipModel.fit`)."""
+    (:meth:`KernelOwnershipModel.fit`).
+
+    A pure function of its arguments' contents, so its models are kept by content and shared,
+    read-only (:data:`FITS`): valuing a question teaches its answers to many what-if Minds, and
+    most of their agents' predictors are fitted on claims some other Mind fitted them on already
+    (on a six-agent store, 282 distinct fits of 2,664 for one ``ownctl ask``)."""
     cfg = cfg or PredictConfig()
-    X = np.asarray(X, dtype=float)
-    K = rbf_kernel(X, X, cfg.gamma) if len(p) else None
-    return [KernelOwnershipModel(cfg).fit(X, p, offset, scale, K, kappa, household) for scale in cfg.scales]
+    X = np.array(X, dtype=float)  # a copy: the models keep it, read-only
+    targets = np.asarray(p, dtype=float)
+    shift = None if offset is None else np.asarray(offset, dtype=float)
+    key = (X.shape, X.tobytes(), targets.shape, targets.tobytes(),
+           None if shift is None else (shift.shape, shift.tobytes()), cfg, float(kappa), household)
+    hit = _fits.get(key)
+    if hit is None:
+        K = rbf_kernel(X, X, cfg.gamma) if len(targets) else None
+        models = tuple(KernelOwnershipModel(cfg).fit(X, targets, shift, scale, K, kappa, household)
+                       for scale in cfg.scales)
+        for array in _arrays(models):
+            array.setflags(write=False)
+        hit = _fits.put(key, models)
+    return list(hit)
+
+
+def _arrays(models: Sequence[KernelOwnershipModel]) -> list[np.ndarray]:
+    """The arrays fitted models hold: coefficients, support rows, the recalibration's system."""
+    out = []
+    for model in models:
+        for array in (getattr(model, "coef_", None), getattr(model, "support_", None),
+                      *(model.recalibration_ or ())):
+            if isinstance(array, np.ndarray):
+                out.append(array)
+    return out
+
+
+def _fit_bytes(models: tuple[KernelOwnershipModel, ...]) -> int:
+    """The memory a kept fit holds: its models' arrays (the recalibration's system the largest)."""
+    return sum(a.nbytes for a in _arrays(models))
+
+
+#: Fits kept by content, least recently used dropped first, at most 128 MiB of them: a fit on a
+#: few hundred claims holds a few MB (its leave-one-out system), one on the paper's 20 objects a
+#: few kB.
+FITS = 1024
+_fits: Kept[tuple[KernelOwnershipModel, ...]] = Kept(FITS, budget=128 << 20, weigh=_fit_bytes)
 
 
 def pooled_scale(evidence: Iterable[Sequence[float]], cfg: PredictConfig | None = None) -> int:
