@@ -3,9 +3,9 @@
 The robot's beliefs are loaded from the store into the in-memory Mind the experiments use, the
 shared task loop (:func:`ownctl.experiment.task.run_task`) visits every object, and after every
 object what the robot learned (permissions, claims, rules, beliefs) and where objects ended up are
-written back, each object's attempt in its own transaction (docs/architecture.md, section 9). A store with no
-objects first receives the paper's blocks world with its ground truth, so the command works on a
-fresh machine.
+written back, each object's attempt in its own transaction (docs/architecture.md, section 9). An empty
+store (no object, no agent) first receives the paper's blocks world with its ground truth, so the
+command works on a fresh machine.
 
 Instructors: ``oracle`` plays the paper's simulated human from the store's ground truth (true norms
 and owners); ``none`` lets the robot act on its own beliefs. Interrupts are utterances spoken when
@@ -198,14 +198,16 @@ def teach_utterance(mind: Mind, hit: Interrupt, attempt: Attempt) -> bool:
 
 def _new_world(ctx: AppContext, seed: int, layout_seed: int | None) -> tuple[World | None, bool]:
     """The world a run adds (the paper's blocks world for an empty store, a new layout beside the old
-    objects for ``layout_seed``), or None; and whether the store was empty. Nothing is written."""
+    objects for ``layout_seed``), or None; and whether the store was empty (no object and no agent:
+a store whose world has agents but no objects keeps its world, and a task finds nothing to do).
+Nothing is written."""
     import numpy as np
 
     from ownctl.world.generator import paper_blocks_world
 
     with ctx.read() as tx:
-        empty = not tx.things.objects()
         agents = tuple(a.name for a in tx.world.agents())
+        empty = not tx.things.objects() and not agents  # a world of its own, even with no objects
         norms = tuple(tx.knowledge.truth_norms())
         base_seed = tx.meta.settings().get("world.seed")
     if not empty and layout_seed is None:

@@ -44,7 +44,8 @@ def run(
 ) -> None:
     """Play a task, obeying and learning the norms.
 
-    The task runs on the store's world; an empty store first receives the paper's blocks world.
+    The task runs on the store's world; an empty store (no objects, no agents) first
+    receives the paper's blocks world.
     Exit 4 if a step failed.
     """
     from rich.console import Console

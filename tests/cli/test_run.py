@@ -29,6 +29,18 @@ def test_fresh_store_gets_the_paper_world_and_the_same_seed_gives_the_same_repor
     assert again["loaded_world"] is False and again["mistakes"] == 0 and again["delivered"] == []
 
 
+def test_a_world_with_agents_and_no_objects_is_kept_and_the_task_finds_nothing(tmp_path: Path,
+                                                                              ownctl: Ownctl) -> None:
+    world = tmp_path / "bare.toml"
+    world.write_text('name = "bare"\nagents = ["ana", "bo"]\nnorms = []\n'
+                     '[[areas]]\nname = "trash"\nbox = [-0.3, 0.6, 0.2, 1.1]\n', encoding="utf-8")
+    ownctl("world", "load", str(world))
+    report = ownctl.json("run", "trashAll", "--kinematic")
+    assert report["loaded_world"] is False and report["steps"] == [] and report["mistakes"] == 0
+    assert {a["name"] for a in ownctl.json("agent", "list")} == {"ana", "bo"}
+    assert ownctl.json("object", "list") == []
+
+
 def test_oracle_corrections_are_stored_and_explain_later_decisions(ownctl: Ownctl) -> None:
     ownctl.json("run", "trashAll", "--kinematic", "--seed", "1")
     texts = {r["text"] for r in ownctl.json("rules", "list")}
