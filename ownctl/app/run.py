@@ -147,11 +147,15 @@ class Interrupting:
         self.base, self.pending, self.teach = base, list(interrupts), teach
 
     def react(self, attempt: Attempt, mind: Mind) -> Verdict:
-        """Speak the matching interrupts; a reprimand (skip) ends the attempt there."""
+        """Speak the matching interrupts; a reprimand (skip) ends the attempt there, and so does
+        anything taught that makes the robot, deciding again, refuse it ("Don't throw that away"
+        said as it does: the permission now forbids the step it is doing)."""
         hits = [i for i in self.pending if i.object == attempt.name and i.action in attempt.steps]
         for hit in hits:
             self.pending.remove(hit)
         skip = any([self.teach(mind, hit, attempt) for hit in hits])
+        if hits and not skip and attempt.allowed:
+            skip = mind.decide(attempt.task.action, attempt.obj, attempt.steps)[0]
         if skip and attempt.allowed:
             return Verdict("skip")
         return self.base.react(attempt, mind)
@@ -199,8 +203,8 @@ def teach_utterance(mind: Mind, hit: Interrupt, attempt: Attempt) -> bool:
 def _new_world(ctx: AppContext, seed: int, layout_seed: int | None) -> tuple[World | None, bool]:
     """The world a run adds (the paper's blocks world for an empty store, a new layout beside the old
     objects for ``layout_seed``), or None; and whether the store was empty (no object and no agent:
-a store whose world has agents but no objects keeps its world, and a task finds nothing to do).
-Nothing is written."""
+    a store whose world has agents but no objects keeps its world, and a task finds nothing to do).
+    Nothing is written."""
     import numpy as np
 
     from ownctl.world.generator import paper_blocks_world

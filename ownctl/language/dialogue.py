@@ -193,9 +193,11 @@ def trash_all(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     rf"(?: and (?:(?:bring|take|put) (?:home|back|away) (?:it|them)|(?:bring|take|put) (?:it|them) "
     rf"(?:home|back|away)))?{_TASK_END}",
     rf"{_TASK_OPENING}tidy(?: up)?{_PLACE}{_TASK_END}",
+    rf"{_TASK_OPENING}tidy(?: up)? {_ALL}{_PLACE}{_TASK_END}",
 )
 def collect_all(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
-    """"Collect all the blocks", "Collect everything", "Put everything away", "Tidy up"."""
+    """"Collect all the blocks", "Collect everything", "Put everything away", "Tidy up", "Tidy
+    everything up"."""
     return (RunTask("collectAll"),)
 
 

@@ -440,16 +440,21 @@ def topic(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 
 # -- object-specific permissions -------------------------------------------------------------
 
+_DARE = "do not you dare "  # "Don't you dare ...": a reprimand in itself, as "Hey, don't ..." is
+
+
 @GRAMMAR.rule("permission", "(?P<stop><REPRIMAND>)?<FORBID><ACT> <OBJ>", rf"{_LEAVE} <OBJ>{_IN_PLACE}?",
               "(?P<stop><REPRIMAND>)?<OBJ> is not (?:yours|for you) to <ACT>",
               rf"(?P<stop><REPRIMAND>)?(?:stop|quit) {_GERUND} <OBJ>", rf"<OBJ> {_STAY}",
               rf"(?:would|do) you mind not {_GERUND} <OBJ>")
 def forbid_object(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Don't throw this wallet away", "Leave that alone" (= don't pick it up), "Hey, don't throw
-    that away!" (stops it too, if the robot is acting), "Don't touch my book" (the book is mine)."""
+    that away!" and "Don't you dare bin that" (a reprimand: stops it too, if the robot is acting),
+    "Don't touch my book" (the book is mine)."""
     obj = r.obj(m["obj"])
     action = r.action(group(m, "act") or "touch")
-    skip = [Skip(obj)] if group(m, "stop") is not None and _acting(r) else []
+    stop = group(m, "stop") is not None or m.group().startswith(_DARE)
+    skip = [Skip(obj)] if stop and _acting(r) else []
     return (*skip, *_owner_claim(m["obj"], obj, r), Permission(action, obj, True))
 
 

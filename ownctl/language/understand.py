@@ -57,7 +57,7 @@ from ownctl.language.lexicon import (
 from ownctl.language.normalize import normalize
 from ownctl.language.reply import reply
 from ownctl.language.resolve import Resolver
-from ownctl.logic.rules import parse_norm
+from ownctl.logic.rules import Literal, Norm, Rule, parse_norm
 
 #: Every grammar rule, in the order they are tried.
 RULES: tuple[GrammarRule, ...] = (*statements.GRAMMAR.rules, *dialogue.GRAMMAR.rules)
@@ -370,10 +370,26 @@ def _combine(pieces: list[_Piece]) -> Understanding:
     main = next((u for u in parts if u.intent not in _SOCIAL), parts[0])
     return Understanding(
         main.intent,
-        tuple(dict.fromkeys(i for u in parts for i in u.instructions)),
+        tuple(dict.fromkeys((*(i for u in parts for i in u.instructions), *_reasons(parts)))),
         " ".join(dict.fromkeys(filter(None, (*(u.reply for u in parts), note)))),
         "+".join(u.form for u in parts),
     )
+
+
+def _reasons(parts: list[Understanding]) -> list[NormInstruction]:
+    """The owners' norms a prohibition given with its reason states, across pieces ("Careful, that's
+    not yours to throw away, it's Jake's": forbid trash if ownedBy jake), as one sentence states
+    them (:func:`ownctl.language.statements.reprimand_claim`): for a forbidden action on an object
+    in one piece, each agent another piece says owns that object. Within one piece the rule that
+    read it decides ("Don't touch my book" states no norm)."""
+    out = []
+    for k, u in enumerate(parts):
+        for forbid in (i for i in u.instructions if isinstance(i, Permission) and i.forbid):
+            for other in parts[:k] + parts[k + 1:]:
+                out += [NormInstruction(Norm("forbid", Rule(forbid.action, (Literal("ownedBy", c.agent),))))
+                        for c in other.instructions
+                        if isinstance(c, Claim) and c.object == forbid.object and not c.negated]
+    return out
 
 
 def _understand(utterance: str, ctx: Context) -> Understanding:

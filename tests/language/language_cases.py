@@ -83,6 +83,11 @@ TABLE: list[tuple[str, str, tuple[str, ...]]] = [
     ("I think that's mine", "claim", ("claim wallet casey --p 0.8",)),
     # object-specific permissions
     ("Don't throw this wallet away", "permission", ("forbid trash on wallet",)),
+    ("Don't you dare throw the wallet away", "reprimand", ("skip wallet", "forbid trash on wallet")),
+    ("Careful, that is not yours to trash. It is Jake's.", "reprimand",  # the reason in another piece
+     ("skip wallet", "forbid trash on wallet", "claim wallet Jake", "forbid trash if ownedBy Jake")),
+    ("Don't throw the cup away! The wallet is Jake's.", "permission",
+     ("forbid trash on cup", "claim wallet Jake")),
     ("Don't throw this away", "permission", ("forbid trash on wallet",)),
     ("Robot, please don't throw this away.", "permission", ("forbid trash on wallet",)),
     ("Don't trash that", "permission", ("forbid trash on wallet",)),

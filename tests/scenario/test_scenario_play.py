@@ -41,6 +41,24 @@ def test_a_reprimand_during_a_run_teaches_its_norm_before_its_permission() -> No
     assert mind.rules["trash"] == (parse_rule("forbid trash if ownedBy xuan"),)
 
 
+@pytest.mark.parametrize(("utterance", "verdict"), [("Don't throw that away.", "skip"),
+                                                    ("Never trash red things", "skip"),
+                                                    ("It's Xuan's cup.", None), ("You can trash that", None)])
+def test_an_interrupt_that_forbids_the_ongoing_action_stops_it(utterance: str, verdict: str | None) -> None:
+    """A plain prohibition or a norm said while the robot acts is taught, and the robot, deciding
+    again, stops; what leaves the action allowed lets it go on (no instructor to stop it here)."""
+    from ownctl.app.run import Interrupt, Interrupting, teach_utterance
+    from ownctl.experiment.task import Attempt, SilentInstructor, get_task
+    from ownctl.mind import Mind
+    from ownctl.world.model import ObjectSpec
+
+    mind = Mind(("xuan",), [ObjectSpec("mug", "red", (0.0, 0.0, 0.0))], ())
+    attempt = Attempt(get_task("trashAll"), 0, "mug", ("find", "pickUp", "trash"), True, ())
+    said = [Interrupt("trash", "mug", utterance, "xuan")]
+    teacher = Interrupting(SilentInstructor(), said, teach_utterance)
+    assert teacher.react(attempt, mind).override == verdict
+
+
 @pytest.mark.parametrize("path", PLAYED, ids=[p.stem for p in PLAYED])
 def test_every_scenario_passes(path: Path) -> None:
     result = play(str(path), "--json", code=None)
