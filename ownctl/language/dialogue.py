@@ -52,10 +52,10 @@ _GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"
 
 @GRAMMAR.rule(
     "question",
-    _QUESTION_LEAD + r"whose (?:(?P<noun><NAME>) )?(?:is|are) <OBJ>(?P<guess> (?:mine|<NAME> 's)"
+    _QUESTION_LEAD + r"whose (?:(?P<noun><NAME>) )?(?:is|are) <LOBJ>(?P<guess> (?:mine|<NAME> 's)"
                      r"(?: or (?:mine|<NAME> 's))*)?",
-    _QUESTION_LEAD + r"who (?:owns|is the owner of|has|is the owner of|are the owners of) <OBJ>",
-    _QUESTION_LEAD + r"who does <OBJ> belong to",
+    _QUESTION_LEAD + r"who (?:owns|is the owner of|has|is the owner of|are the owners of) <LOBJ>",
+    _QUESTION_LEAD + r"who does <LOBJ> belong to",
     _QUESTION_LEAD + r"to whom does <OBJ> belong",
     _QUESTION_LEAD + r"who is <OBJ> owned by",
     _QUESTION_LEAD + r"(?:is|are) <OBJ> (?:mine|<NAME> 's|owned(?: by <NAME>)?)(?: or (?:mine|<NAME> 's))*",
@@ -70,7 +70,8 @@ _GREETING = r"(?:hi|hello|hey|good (?:morning|afternoon|evening))(?: there)?"
 )
 def ask_owner(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
     """"Whose is this?", "Who owns that?", "Who does this belong to?", "Is this Jake's?", "Do you
-    know whose wallet this is?", "Whose keys are these, Jake's?" (a guess asks, it claims nothing)."""
+    know whose wallet this is?", "Whose keys are these, Jake's?" (a guess asks, it claims nothing),
+    "Who owns the mug on the table?"."""
     noun = group(m, "noun") or group(m, "noun2")
     obj = r.obj(noun) if noun and r.is_object(noun) else r.obj(m["obj"])
     return (AskOwner(obj),)

@@ -18,7 +18,7 @@ from dataclasses import dataclass
 
 from ownctl.language.instructions import Instruction
 from ownctl.language.lexicon import NOT_NOUNS, actions_regex, alternation
-from ownctl.language.resolve import Decline, Resolver
+from ownctl.language.resolve import LOCATIVE, Decline, Resolver
 from ownctl.logic.names import word_pattern
 
 _NAME = word_pattern()
@@ -35,6 +35,10 @@ FRAGMENTS: dict[str, str] = {
     # (adjectives are checked against the object: "the red mug")
     "OBJ": rf"(?P<obj>(?:this|that|it)(?: one)?|these|those|they|them|"
            rf"(?:{_DETERMINER} )?(?:{_WORD} ){{0,2}}{_NOUN})",
+    # an object phrase that may say where the object is: "the mug on the table", "the book on my
+    # desk" (the place must be a known area the object is in: Resolver.obj)
+    "LOBJ": rf"(?P<obj>(?:this|that|it)(?: one)?|these|those|they|them|"
+            rf"(?:{_DETERMINER} )?(?:{_WORD} ){{0,2}}{_NOUN}(?: {LOCATIVE})?)",
     # "do that": the action the robot is doing now
     "DO": r"do (?:that|this|it|so)",
     # a prohibition ("don't", "never", "you may not", ...) followed by a space

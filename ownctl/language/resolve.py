@@ -7,6 +7,7 @@ an agent name, :data:`ANY` ("someone", "other people") or :data:`NOBODY` ("nobod
 
 from __future__ import annotations
 
+import re
 from functools import lru_cache
 
 from ownctl.errors import OwnctlError, UnknownName
@@ -20,7 +21,7 @@ from ownctl.language.lexicon import (
     SPEAKER_WORDS,
     action_of,
 )
-from ownctl.logic.names import check_name, is_name
+from ownctl.logic.names import check_name, is_name, word_pattern
 from ownctl.logic.rules import ANY, Literal
 from ownctl.logic.vocab import ACTIONS
 
@@ -135,6 +136,8 @@ class Resolver:
         """
         if phrase in DEICTIC:
             return self.about(phrase)
+        if (located := _LOCATED.fullmatch(phrase)) is not None:
+            return self._located(located["head"], located["place"], phrase)
         det, words = split_determiner(phrase)
         if not words:
             raise Decline(phrase)
@@ -184,6 +187,20 @@ class Resolver:
         if len(found) != 1:
             raise MissingContext(f"which one is {phrase!r}? it could be {', '.join(found)}")
         return found[0]
+
+    def _located(self, head: str, place: str, phrase: str) -> str:
+        """The object ``head`` names, said to be in the area ``place`` ("the mug on the table"):
+        an area the robot knows (else the words name no place: Decline), and one the object is
+        known to be in (else the phrase names some other thing)."""
+        area = self.area(place, False)
+        if area is None:
+            raise Decline(phrase)
+        name = self.obj(head)
+        facts = self.ctx.facts.get(name)
+        if facts is not None and area not in facts.areas:
+            where = ", ".join(sorted(facts.areas)) or "in no known area"
+            raise NotAnObject(f"{name} is not in the {area} area ({where}): which object is {phrase!r}?")
+        return name
 
     def _check_adjectives(self, name: str, adjectives: list[str]) -> None:
         facts = self.ctx.facts.get(name)
@@ -250,6 +267,12 @@ class Resolver:
         if word.lower() in self._categories:
             return self._categories[word.lower()]
         return word if not self._categories and is_name(word) else None
+
+
+#: Where an object is, after its noun: "on the table", "in my desk area" (the grammar's LOBJ).
+LOCATIVE = (r"(?:on|in|at|by|near|under|inside|next to) (?:the|my|your|our|his|her|their) "
+            rf"(?P<place>{word_pattern()})(?: area)?")
+_LOCATED = re.compile(rf"(?P<head>.+?) {LOCATIVE}")
 
 
 def split_determiner(phrase: str) -> tuple[str, list[str]]:

@@ -201,11 +201,12 @@ def off_limits(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 
 # -- claims ----------------------------------------------------------------------------------
 
-@GRAMMAR.rule("claim", rf"(?:(?:no|nope|yes|yeah) )?(?P<now>now )?<THINK><OBJ> {_VERB} (?P<rest>.+)",
+@GRAMMAR.rule("claim", rf"(?:(?:no|nope|yes|yeah) )?(?P<now>now )?<THINK><LOBJ> {_VERB} (?P<rest>.+)",
               r"<THINK>(?P<rest>(?:not )?(?:all |only )?(?:mine|<NAME> 's)(?: .+)?)",
               r"<THINK>(?P<verb>belongs to|does not belong to|owned by|not owned by) (?P<rest>.+)")
 def claim(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"This is mine", "That belongs to Xuan", "It's not Jake's", "The mug's mine", "Not mine",
+    """"This is mine", "That belongs to Xuan", "It's not Jake's", "The mug's mine", "The mug on the
+    table is mine", "Not mine",
     "(but) now it's Jake's" (a transfer: Jake's alone); without its subject, of the object in
     question ("Belongs to nobody", "Owned by Mia")."""
     found = _owned(m, r)

@@ -12,6 +12,7 @@ import pytest
 from ownctl.errors import OwnctlError, UnknownName
 from ownctl.language import MissingContext, NotUnderstood, understand
 from ownctl.language.context import Context, Facts
+from ownctl.language.resolve import NotAnObject
 from ownctl.language.understand import MAX_CHARS, TooLong
 from ownctl.logic.rules import parse_norm
 
@@ -135,6 +136,22 @@ def test_claims(utterance: str, about: str | None, want: set[str]) -> None:
 def test_a_colour_that_does_not_fit_the_object_is_an_error_not_a_guess() -> None:
     with pytest.raises(OwnctlError, match="teapot is blue, not red"):
         understand("The red teapot is mine.", CTX)
+
+
+@pytest.mark.parametrize(("utterance", "want"), [
+    ("The teapot on the counter is mine.", {"claim teapot olga"}),
+    ("Whose is the glove in the hall?", {"owners glove"}),
+    ("Who owns the blue hat by the hall area?", {"owners hat"}),
+])
+def test_an_object_named_with_where_it_is(utterance: str, want: set[str]) -> None:
+    assert texts(utterance) == want
+
+
+def test_a_place_the_object_is_not_in_is_an_error_and_an_unknown_place_no_reading() -> None:
+    with pytest.raises(NotAnObject, match="hat is not in the counter area"):
+        understand("The hat on the counter is mine.", CTX)
+    with pytest.raises(NotUnderstood):
+        understand("The hat on the moon is mine.", CTX)
 
 
 def test_a_description_that_fits_two_objects_asks_which() -> None:
