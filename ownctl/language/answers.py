@@ -19,14 +19,14 @@ is first read as its answer, into the same instructions as any claim, permission
 **Clauses.** A reply is read clause by clause (split at punctuation; a clause that reads as none of
 the kinds below is split again before "and", "but", "so", "because" and "since"), each clause one of:
 
-- a *reply word*: a phrase of the tables below (YES, NO, PARTLY, DONT_KNOW), whole or made of two or
-  three different phrases of one table ("of course it does", "yes exactly"), with a courtesy at either
-  end, a discourse marker before it ("actually, no") or a place or afterthought after it
-  (REPLY_TAILS: "that's not a rule here"); "it depends on ..." and a restriction ("only for her
-  books") are partly, a referral ("check with Mia first", "let me ask Jake") a don't-know; the
-  don't-knows include the phrases built from parts ("not a" / "no" / "the faintest" + "idea" /
-  "clue"). A clause that opens with "yes", "sure", "ok" or "no" is that reply word and a clause
-  after it ("no it's mine");
+- a *reply word*: a phrase of the tables below (YES, NO, PARTLY) or of DONT_KNOW (in the lexicon),
+  whole or made of two or three different phrases of one table ("of course it does", "yes exactly"),
+  with a courtesy at either end, a discourse marker before it ("actually, no") or a place or
+  afterthought after it (REPLY_TAILS: "that's not a rule here"); "it depends on ..." and a
+  restriction ("only for her books") are partly, a referral ("check with Mia first", "let me ask
+  Jake") a don't-know; the don't-knows include the phrases built from parts ("not a" / "no" / "the
+  faintest" + "idea" / "clue"). A clause that opens with "yes", "sure", "ok" or "no" is that reply
+  word and a clause after it ("no it's mine");
 - an *aside*: a courtesy ("thanks"), a discourse marker ("so, ...") or a question back about the
   question (COUNTER_QUESTIONS: "Jake's, why do you ask?"); a hold marker (HOLD: "hold on", "wait",
   "hang on a second") before a clause or as one, only in a reply that is nothing but a don't-know
@@ -107,6 +107,7 @@ from ownctl.language.lexicon import (
     ADJECTIVES,
     ASIDES,
     DISCOURSE,
+    DONT_KNOW,
     GERUNDS,
     HEDGES,
     NOT_NEEDED,
@@ -156,29 +157,6 @@ PARTLY = ("partly", "sometimes", "not always", "it depends", "in part", "only so
           "mostly not", "not usually", "rarely", "seldom", "occasionally", "that depends", "not quite",
           "not exactly", "not necessarily", "kind of", "sort of", "more or less", "in a way",
           "to some extent", "it varies")
-#: Not knowing, said as having no notion of it: "no idea", "not a clue", "I haven't the faintest idea",
-#: "no clue whose it is", "not the foggiest".
-_NOTIONS = ("idea", "clue", "notion")
-_NOTION_TAILS = ("", "whose", "whose it is", "at all", "whatsoever")
-_NOT_HAVE = ("not", "i have not", "i have not got", "i do not have", "have not", "have not got")
-_NOT_THE = ("the faintest", "the slightest", "the foggiest")
-_NO_NOTION = tuple(sorted(
-    phrases(("", "i have", "i have got", "absolutely", "i have absolutely"), ("no",), ("", "real"), _NOTIONS,
-            _NOTION_TAILS)
-    | phrases(_NOT_HAVE, ("a", "any", "the least", "the first", *_NOT_THE), _NOTIONS, _NOTION_TAILS)
-    | phrases(_NOT_HAVE, _NOT_THE)))
-DONT_KNOW = ("i do not know", "do not know", "no idea", "i have no idea", "not sure", "i am not sure",
-             "dunno", "i dunno", "no clue", "i have no clue", "who knows", "i can not say", "can not say",
-             "hard to say", "i can not tell", "i am not certain", "not certain", "i do not remember",
-             "i forget", "beats me", "ask someone else", "i would have to check", "i have to check",
-             "i need to check", "i will have to check", "i would need to check", "let me check",
-             "i will check", "i would have to ask", "i will have to ask", "let me ask", "search me",
-             "i can not remember", "i can not recall", "i do not recall", "i could not tell you",
-             "good question", "i really do not know", "i honestly do not know", "i wish i knew",
-             "i do not know whose", "i do not know whose it is", "no idea whose", "no idea whose it is",
-             "i am not sure whose", "i am not sure whose it is", "not my call",
-             "your guess is as good as mine", "god knows", "heaven knows", "nobody knows", "i would not know",
-             "how would i know", "how should i know") + _NO_NOTION
 COURTESY = ("thanks", "thank you", "sorry", "hi", "hello", "hey")
 #: Questions back about the question itself ("Mia's, why?"): asides that ask nothing to be stored.
 COUNTER_QUESTIONS = ("why", "why do you ask", "why do you want to know", "why are you asking",

@@ -24,7 +24,7 @@ from ownctl.language.instructions import (
     Request,
     RunTask,
 )
-from ownctl.language.lexicon import NOT_NAMES, STATE_PHRASES, actions_regex, alternation, is_state
+from ownctl.language.lexicon import DONT_KNOW, NOT_NAMES, STATE_PHRASES, actions_regex, alternation, is_state
 from ownctl.language.resolve import Resolver
 
 GRAMMAR = Grammar()
@@ -236,6 +236,12 @@ _DEGREE = (r"(?:so|really|very|a bit|a little|a little bit|quite|pretty|too|kind
 _REMARK_TAIL = (r"(?: (?:today|tonight|now|right now|at the moment|again|already|in here|out here|"
                 r"these days|lately|this morning|this afternoon|this evening|after work|to be honest|"
                 r"about (?P<about>\w+(?: \w+){0,3})))?")
+
+
+@GRAMMAR.rule("remark", rf"(?:{alternation(DONT_KNOW)})(?: (?:sorry|either|then))?")
+def not_knowing(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
+    """"No idea whose it is", "I don't know", "Beats me": the speaker knows nothing to tell."""
+    return ()
 
 
 @GRAMMAR.rule(

@@ -163,6 +163,33 @@ def phrases(*parts: tuple[str, ...]) -> frozenset[str]:
     return frozenset(" ".join(w for w in pick if w) for pick in product(*parts))
 
 
+#: Not knowing, said as having no notion of it: "no idea", "not a clue", "I haven't the faintest idea",
+#: "no clue whose it is", "not the foggiest".
+_NOTIONS = ("idea", "clue", "notion")
+_NOTION_TAILS = ("", "whose", "whose it is", "at all", "whatsoever")
+_NOT_HAVE = ("not", "i have not", "i have not got", "i do not have", "have not", "have not got")
+_NOT_THE = ("the faintest", "the slightest", "the foggiest")
+_NO_NOTION = tuple(sorted(
+    phrases(("", "i have", "i have got", "absolutely", "i have absolutely"), ("no",), ("", "real"), _NOTIONS,
+            _NOTION_TAILS)
+    | phrases(_NOT_HAVE, ("a", "any", "the least", "the first", *_NOT_THE), _NOTIONS, _NOTION_TAILS)
+    | phrases(_NOT_HAVE, _NOT_THE)))
+DONT_KNOW = ("i do not know", "do not know", "no idea", "i have no idea", "not sure", "i am not sure",
+             "dunno", "i dunno", "no clue", "i have no clue", "who knows", "i can not say", "can not say",
+             "hard to say", "i can not tell", "i am not certain", "not certain", "i do not remember",
+             "i forget", "beats me", "ask someone else", "i would have to check", "i have to check",
+             "i need to check", "i will have to check", "i would need to check", "let me check",
+             "i will check", "i would have to ask", "i will have to ask", "let me ask", "search me",
+             "i can not remember", "i can not recall", "i do not recall", "i could not tell you",
+             "good question", "i really do not know", "i honestly do not know", "i wish i knew",
+             "i do not know whose", "i do not know whose it is", "no idea whose", "no idea whose it is",
+             "i am not sure whose", "i am not sure whose it is", "not my call",
+             "your guess is as good as mine", "god knows", "heaven knows", "nobody knows", "i would not know",
+             "how would i know", "how should i know") + _NO_NOTION
+"""Saying one does not know: a reply that answers a pending question with nothing
+(``ownctl.language.answers``), and a remark that stores nothing (``dialogue.remark``)."""
+
+
 _IT_WORDS = ("it", "that", "this")
 #: Asides saying the speaker still needs the object ("No, I still need it"): reasons to keep it.
 STILL_NEEDED = (phrases(("i", "we"), ("", "still"), ("need", "use", "want"), _IT_WORDS)

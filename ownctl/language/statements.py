@@ -25,6 +25,7 @@ from ownctl.language.instructions import Claim, Instruction, NormInstruction, Pe
 from ownctl.language.lexicon import (
     BIN_WORDS,
     DEICTIC,
+    DONT_KNOW,
     GERUNDS,
     NOT_NOUNS,
     PASSIVES,
@@ -460,8 +461,11 @@ def forbid_object(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
 
 
 @GRAMMAR.rule("reprimand", r"(?:(?:no|nope|hey|stop|wait|whoa) )*not <OBJ>(?: please)?")
-def contrast_object(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...]:
-    """"No, not the mug!": not the current action on that object."""
+def contrast_object(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
+    """"No, not the mug!": not the current action on that object ("Not sure" says one does not
+    know: no object)."""
+    if f"not {m['obj']}" in DONT_KNOW:
+        return None
     obj = r.obj(m["obj"])
     action = r.current_action(m.group())
     return (*([Skip(obj)] if obj == r.ctx.about else []), Permission(action, obj, True))
