@@ -158,8 +158,8 @@ PREMODIFIERS: tuple[Modifier, ...] = (
 POSTMODIFIERS: tuple[Modifier, ...] = (
     _mod(rf"{_REL}{_BE}{_NOT}in (?:the )?(?:category (?P<k>{_NAME})|(?P<k2>{_NAME}) category)",
          _category),
-    _mod(rf"{_REL}{_BE}{_NOT}(?P<prep>in|on|inside|within|at|from|outside(?: of)?) (?:the )?(?P<a>{_NAME})"
-         r"(?P<said> area| zone| region)?", _area),
+    _mod(rf"{_REL}{_BE}{_NOT}(?P<prep>in|on|inside|within|at|from|off|outside(?: of)?) "
+         rf"(?:the )?(?P<a>{_NAME})(?P<said> area| zone| region)?", _area),
     _mod(rf"{_REL}(?P<neg>(?:does|do) not )?belongs? to {_WHO}", _owner),
     _mod(rf"{_REL}{_BE}{_NOT}owned by {_WHO}", _owner),
     _mod(rf"{_REL}(?:is|are) {_NOT}{_POSS}", _owner),

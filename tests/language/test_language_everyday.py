@@ -50,6 +50,7 @@ def texts(utterance: str, ctx: Context = CTX) -> set[str]:
     ("Don't trash things of Jake's or Xuan's.",
      ["forbid trash if ownedBy jake", "forbid trash if ownedBy xuan"]),
     ("Only throw away things nobody owns.", ["forbid trash if ownedBy any"]),
+    ("Never take anything off the counter.", ["forbid pickUp if inArea counter"]),
 ])
 def test_the_examples_store_exactly_their_rules(utterance: str, rules: list[str]) -> None:
     assert texts(utterance) == {parse_norm(r).text() for r in rules}
