@@ -2,7 +2,7 @@
 
 *Owner phrases* follow "this is ..." / "this belongs to ...": ``[hedge] [not] [only] OWNER [now]
 [alone] [and ALSO] [too] [not OTHER]`` ("probably mine", "mine now, not Xuan's", "Jake's alone",
-"mine and Jake's" or "Mia and Jake's": joint ownership, two claims).
+"mine and Jake's", "Mia and Jake's" or "Jake and mine": joint ownership, two claims).
 
 *Class phrases* describe a set of objects as literals about the target object:
 ``[determiner] premodifier* HEAD postmodifier*`` where premodifiers are possessors and colours
@@ -60,6 +60,11 @@ class Owned:
     p: float = 1.0
 
 
+def _possessive(word: str) -> bool:
+    """True if an owner word is possessive: "mine", "ours", "hers", "Jake 's"."""
+    return word in ("mine", "ours") or word in POSSESSIVE_PRONOUNS or word.endswith(" 's")
+
+
 def owners(rest: str, possessive: bool, negated: bool, r: Resolver) -> list[Owned] | None:
     """Parse an owner phrase; ``possessive`` after "is" ("mine", "Jake's"), else after "belongs to".
 
@@ -70,9 +75,9 @@ def owners(rest: str, possessive: bool, negated: bool, r: Resolver) -> list[Owne
     if m is None:
         return None
     word = m["owner"]
-    said = word in ("mine", "ours") or word in POSSESSIVE_PRONOUNS or word.endswith(" 's")
-    # "Mia and Jake's": one possessive ending for two owners (joint ownership, as "Mia's and Jake's")
-    joint = possessive and not said and (m["also"] or "").endswith(" 's")
+    said = _possessive(word)
+    # "Mia and Jake's", "Jake and mine": one possessive for two owners (joint, as "Mia's and Jake's")
+    joint = possessive and not said and m["also"] is not None and _possessive(m["also"])
     if possessive != said and not joint:
         return None
     neg = negated ^ bool(m["neg"])

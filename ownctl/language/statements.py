@@ -257,14 +257,15 @@ def claim_and_so(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | Non
 @GRAMMAR.rule(
     "claim",
     r"<THINK>(?P<obj>(?:this|that|it)(?: one)?|these|those|they) (?:is|are) (?P<neg>not )?"
-    r"(?P<who>my|<NAME> 's) (?P<noun><NAME>)"
+    r"(?P<who>my|<NAME> 's|<NAME>(?: 's)? and (?:my|<NAME> 's)) (?P<noun><NAME>)"
     r"(?P<tail> now| alone| too)?",
 )
 def claim_my_noun(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"This is my wallet", "That's not Jake's cup" (the noun names the object when it is one)."""
+    """"This is my wallet", "That's not Jake's cup", "This is Jake and Mia's mug" (both own it; the
+    noun names the object when it is one)."""
     if m["noun"] in NOT_NOUNS:
         return None
-    who = "mine" if m["who"] == "my" else m["who"]
+    who = re.sub(r"\bmy$", "mine", "mine" if m["who"] == "my" else m["who"])
     found = owners(("not " if m["neg"] else "") + who + (m["tail"] or ""), True, False, r)
     if found is None:
         return None
