@@ -90,8 +90,11 @@ def _owned(m: re.Match[str], r: Resolver, again: bool = False) -> list[Owned] | 
         return None
     cap = hedge_of((group(m, "think") or "").removesuffix(" that ").strip() or None)
     exclusive = bool(group(m, "now"))
-    return [Owned(o.agent, o.negated, o.exclusive or (exclusive and not o.negated), min(o.p, cap))
-            for o in found]
+    # a transfer ("now it's Jake's") is exclusive; to joint owners ("now it's Jake's and Mia's") only
+    # the first claim is, so that it clears the others before the next one is stored
+    first = next((k for k, o in enumerate(found) if not o.negated), None)
+    return [Owned(o.agent, o.negated, o.exclusive or (exclusive and k == first), min(o.p, cap))
+            for k, o in enumerate(found)]
 
 
 def _claims(obj: str, found: list[Owned]) -> list[Claim]:

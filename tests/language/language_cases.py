@@ -79,6 +79,7 @@ TABLE: list[tuple[str, str, tuple[str, ...]]] = [
     ("That's Xuan and Jake's", "claim", ("claim wallet xuan", "claim wallet Jake")),  # one 's, two owners
     ("This is Xuan and Jake's cup", "claim", ("claim cup xuan", "claim cup Jake")),
     ("It's Xuan and mine", "claim", ("claim wallet xuan", "claim wallet casey")),
+    ("Now it's Xuan and Jake's", "claim", ("claim wallet xuan --only", "claim wallet Jake")),
     ("The cup is Jake and Xuan's, not mine", "claim",
      ("claim cup Jake", "claim cup xuan", "claim cup casey --not")),
     ("It's probably Jake's", "claim", ("claim wallet Jake --p 0.8",)),
