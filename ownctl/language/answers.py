@@ -272,12 +272,13 @@ _DISPOSE = action_of("throw away")  # the action a reason about needing the obje
 
 def reading(utterance: str) -> str | None:
     """``"yes"``, ``"no"``, ``"partly"`` or ``"unknown"`` when ``utterance`` is one such reply as a
-    whole, or clause by clause with every clause the same one (courtesies aside); None otherwise."""
+    whole, or clause by clause with every clause the same one (courtesies and discourse markers
+    aside: "Well, only if it is red" is partly); None otherwise."""
     whole = _whole(utterance)
     if whole is not None:
         return whole
     words = (normalize(clause) for clause in _CLAUSES.split(utterance))
-    labels = {_label(w) for w in words if w and w not in COURTESY}  # None: a clause that is no reply
+    labels = {_label(w) for w in words if w and w not in COURTESY and w not in _MARKERS}  # None: no reply
     return next(iter(labels)) if len(labels) == 1 else None
 
 

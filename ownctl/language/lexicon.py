@@ -246,7 +246,7 @@ NOBODY_WORDS = frozenset({"nobody"})
 
 #: Words dropped wherever they occur.
 FILLERS = frozenset({"please", "pls", "plz", "kindly", "um", "umm", "uh", "uhh", "erm", "er", "hmm",
-                     "oh", "well"})
+                     "oh"})  # not "well": "as well", "I am not well"
 
 #: What the parser says it understands when it does not (NotUnderstood's message).
 EXAMPLES = (

@@ -40,7 +40,7 @@ _OWNER = rf"(?:mine|{_NAME}(?: 's)?)"
 _TAIL = re.compile(
     rf"(?P<hedge>{alternation(tuple(HEDGES))} )?(?P<neg>not )?"
     r"(?P<only>(?:only|all|solely|exclusively|just) (?:to )?)?"
-    r"(?:both )?"
+    r"(?:both |also )?"
     rf"(?P<owner>{_OWNER})"
     r"(?P<excl>(?: now| alone| only| exclusively| and (?:only )?(?P=owner)(?: alone)?)*)"
     rf"(?: and (?P<also>{_OWNER}))?"

@@ -349,14 +349,17 @@ def claim_gift(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
 
 
 @GRAMMAR.rule("claim",
-              rf"<THINK>(?P<a>i|{_WHO}<NAME>) and (?P<b>i|me|{_WHO}<NAME>) (?:both )?(?:share|co-own|own) "
-              r"<OBJ>(?: together| jointly)?",
-              rf"<THINK>(?P<a>i|{_WHO}<NAME>) (?:share|shares) <OBJ> with (?P<b>me|<NAME>)",
+              rf"<THINK>(?:both )?(?P<a>i|{_WHO}<NAME>) and (?P<b>i|me|{_WHO}<NAME>) (?:both )?"
+              r"(?:share|co-own|own) <OBJ>(?: together| jointly)?",
+              rf"<THINK>(?P<a>i|{_WHO}<NAME>) (?:share|shares|owns?) <OBJ> (?:with|together with) "
+              r"(?P<b>me|<NAME>)",
+              r"<THINK><OBJ> (?:belongs|belong) to (?P<a>me|<NAME>) as well as (?P<b>me|<NAME>)",
               r"<THINK><OBJ> (?:is|are) (?:shared|co-owned|owned jointly|jointly owned) by (?P<a>me|<NAME>) "
               r"and (?P<b>me|<NAME>)")
 def claim_shared(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | None:
-    """"Jake and I share the bottle", "I share the lamp with Mia", "The bottle is shared by Jake and
-    Casey": each of the two owns it (neither alone)."""
+    """"Jake and I share the bottle", "Both Jake and Mia own it", "I share the lamp with Mia", "Jake
+    owns it with Mia", "It belongs to Jake as well as Mia", "The bottle is shared by Jake and Casey":
+    each of the two owns it (neither alone)."""
     agents = _two_owners(m, r)
     return None if agents is None else tuple(Claim(r.obj(m["obj"]), a) for a in agents)
 

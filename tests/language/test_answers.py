@@ -223,7 +223,7 @@ def test_a_hold_marker_goes_only_with_a_dont_know(words: str, question: dict) ->
 
 
 @pytest.mark.parametrize("words", ["Only when Ann is home.", "Except on weekends", "Unless it's cracked",
-                                   "Well, only if it is red"])
+                                   "Well, only if it is red", "So, only if it is red"])
 def test_a_restriction_to_a_rule_question_is_partly(words: str) -> None:
     assert answer_instructions(words, RED, CTX) == ()
     assert reading(words) == "partly"
