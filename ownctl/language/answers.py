@@ -120,7 +120,8 @@ from ownctl.language.lexicon import (
     phrases,
 )
 from ownctl.language.normalize import normalize
-from ownctl.logic.rules import Literal, Norm, Rule, parse_rule
+from ownctl.language.statements import owner_norm
+from ownctl.logic.rules import Norm, Rule, parse_rule
 
 YES = ("yes", "yes you may", "you may", "yes you can", "you can", "sure", "go ahead", "ok", "okay",
        "yes please", "yes go ahead", "of course", "yes of course", "yep", "yeah", "yup", "it is fine", "fine",
@@ -596,11 +597,6 @@ def _reasons_fit(notes: set[str], lead: str) -> bool:
     return not ("shared" in notes or "kept" in notes and lead != "no" or "freed" in notes and lead == "no")
 
 
-def _owner_norm(action: str, agent: str) -> NormInstruction:
-    """``forbid ACTION if ownedBy AGENT``: the norm a reprimand's owner gives."""
-    return NormInstruction(Norm("forbid", Rule(action, (Literal("ownedBy", agent),))))
-
-
 def _permission(said: tuple[Instruction, ...], action: str, obj: str, forbid: bool | None,
                 reasons: tuple[Claim, ...], utterance: str, ctx: Context) -> tuple[Instruction, ...] | None:
     """The permission of ``action`` on ``obj`` the reply gives (``forbid``, or with None the one
@@ -614,7 +610,7 @@ def _permission(said: tuple[Instruction, ...], action: str, obj: str, forbid: bo
         forbid = next(iter(signs))
     claims = [i for i in said if isinstance(i, Claim)]
     owners = [c.agent for c in claims if not c.negated]
-    norms = [_owner_norm(action, agent) for agent in owners] if forbid else []
+    norms = [owner_norm(action, agent) for agent in owners] if forbid else []
     for i in said:
         fits = (isinstance(i, Permission) and (i.action, i.object, i.forbid) == (action, obj, forbid)
                 or isinstance(i, Claim) and i.object == obj or isinstance(i, NormInstruction) and i in norms)
@@ -624,7 +620,7 @@ def _permission(said: tuple[Instruction, ...], action: str, obj: str, forbid: bo
         return None
     given = [i for i in said if isinstance(i, NormInstruction)]
     if forbid:
-        given += [_owner_norm(action, c.agent) for c in reasons if not c.negated]
+        given += [owner_norm(action, c.agent) for c in reasons if not c.negated]
     return tuple(dict.fromkeys((*claims, Permission(action, obj, forbid), *given)))
 
 

@@ -114,13 +114,18 @@ def _owner_claim(phrase: str, obj: str, r: Resolver) -> list[Claim]:
 
 # -- reprimands ------------------------------------------------------------------------------
 
+def owner_norm(action: str, agent: str) -> NormInstruction:
+    """``forbid ACTION if ownedBy AGENT``: the norm a reprimand or a prohibition with its reason
+    ("don't, it's Casey's") states for the owner it names."""
+    return NormInstruction(Norm("forbid", Rule(action, (Literal("ownedBy", agent),))))
+
+
 def _reprimand(obj: str, found: list[Owned], action: str | None, r: Resolver) -> tuple[Instruction, ...]:
     """Stop (if acting), the claims, and -- when there is an action -- the permission and norms."""
     claims = _claims(obj, found)
     if action is None:
         return tuple(claims)
-    norms = [NormInstruction(Norm("forbid", Rule(action, (Literal("ownedBy", o.agent),))))
-             for o in found if not o.negated]
+    norms = [owner_norm(action, o.agent) for o in found if not o.negated]
     skip = [Skip(obj)] if _acting(r) else []
     return (*skip, *claims, Permission(action, obj, True), *norms)
 

@@ -57,7 +57,7 @@ from ownctl.language.lexicon import (
 from ownctl.language.normalize import normalize
 from ownctl.language.reply import reply
 from ownctl.language.resolve import Resolver
-from ownctl.logic.rules import Literal, Norm, Rule, parse_norm
+from ownctl.logic.rules import parse_norm
 
 #: Every grammar rule, in the order they are tried.
 RULES: tuple[GrammarRule, ...] = (*statements.GRAMMAR.rules, *dialogue.GRAMMAR.rules)
@@ -386,8 +386,7 @@ def _reasons(parts: list[Understanding]) -> list[NormInstruction]:
     for k, u in enumerate(parts):
         for forbid in (i for i in u.instructions if isinstance(i, Permission) and i.forbid):
             for other in parts[:k] + parts[k + 1:]:
-                out += [NormInstruction(Norm("forbid", Rule(forbid.action, (Literal("ownedBy", c.agent),))))
-                        for c in other.instructions
+                out += [statements.owner_norm(forbid.action, c.agent) for c in other.instructions
                         if isinstance(c, Claim) and c.object == forbid.object and not c.negated]
     return out
 
