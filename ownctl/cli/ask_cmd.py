@@ -12,6 +12,7 @@ from typing import Annotated, Any
 import typer
 
 from ownctl.cli.common import JsonOpt, QuietOpt, app_ctx, emit, progress_bar, table
+from ownctl.humanize import plural
 
 
 def ask(
@@ -60,10 +61,13 @@ def ask(
         return
     rows = [[q["text"], _mistakes(q["gain"]), _answers(q["answers"])] for q in data["questions"]]
     title = (f"{data['task']}: {data['expected_mistakes']:.2f} expected mistakes on "
-             f"{len(data['objects'])} objects")
+             f"{plural(len(data['objects']), 'object')}")
     listing = table(title, ["question", "gain", "answers (p)"], rows)
 
     def show() -> None:
+        if not data["objects"]:  # nothing to decide, so nothing to value
+            typer.echo(f"{data['task']}: no object is left to decide, so there is nothing to ask.")
+            return
         listing()
         if not data["permissions"]:  # docs/asking.md, section 4: a task asks only after its first one
             typer.echo(f"No permission of {', '.join(data['steps'])} is known yet: these gains rest on the "

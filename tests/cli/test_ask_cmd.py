@@ -74,6 +74,16 @@ def test_ask_says_when_its_gains_rest_on_the_prior_alone(tmp_path: Path, ownctl:
     assert "No permission" not in ownctl("ask", "--task", "collect", "--top", "1").stdout
 
 
+def test_ask_with_no_object_left_says_there_is_nothing_to_ask(tmp_path: Path, ownctl: Ownctl) -> None:
+    path = tmp_path / "bare.toml"
+    path.write_text('name = "bare"\nagents = ["ana"]\nnorms = []\n'
+                    '[[areas]]\nname = "trash"\nbox = [-0.3, 0.6, 0.2, 1.1]\n', encoding="utf-8")
+    ownctl("world", "load", str(path))
+    assert ownctl("ask", "--task", "trashAll").stdout == (
+        "trashAll: no object is left to decide, so there is nothing to ask.\n")
+    assert ownctl.json("ask", "--task", "trashAll")["questions"] == []
+
+
 ANSWERS = {"may": "yes, you may", "whose": "It's xuan's", "rule": "yes"}
 
 
