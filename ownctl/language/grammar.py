@@ -26,6 +26,10 @@ _NAME = word_pattern()
 _WORD = rf"(?!{alternation(NOT_NOUNS)}){_NAME}"
 _NOUN = rf"{_WORD}(?: \d+)?"
 _DETERMINER = rf"(?:this|that|these|those|the|a|an|my|your|our|his|her|their|{_NAME} 's)"
+#: The two forms of an object phrase: pointing at it ("that one", "them") or naming it ("the red mug",
+#: "Jake's cup", "block 2").
+_POINTING = r"(?:this|that|it)(?: one)?|these|those|they|them"
+_NOUN_PHRASE = rf"(?:{_DETERMINER} )?(?:{_WORD} ){{0,2}}{_NOUN}"
 
 #: Named fragments usable in rule templates.
 FRAGMENTS: dict[str, str] = {
@@ -33,12 +37,10 @@ FRAGMENTS: dict[str, str] = {
     "ACT": rf"(?P<act>{actions_regex()})",
     # an object phrase: "that", "this one", "this wallet", "the wallet", "jake 's cup", "block 2"
     # (adjectives are checked against the object: "the red mug")
-    "OBJ": rf"(?P<obj>(?:this|that|it)(?: one)?|these|those|they|them|"
-           rf"(?:{_DETERMINER} )?(?:{_WORD} ){{0,2}}{_NOUN})",
+    "OBJ": rf"(?P<obj>{_POINTING}|{_NOUN_PHRASE})",
     # an object phrase that may say where the object is: "the mug on the table", "the book on my
     # desk" (the place must be a known area the object is in: Resolver.obj)
-    "LOBJ": rf"(?P<obj>(?:this|that|it)(?: one)?|these|those|they|them|"
-            rf"(?:{_DETERMINER} )?(?:{_WORD} ){{0,2}}{_NOUN}(?: {LOCATIVE})?)",
+    "LOBJ": rf"(?P<obj>{_POINTING}|{_NOUN_PHRASE}(?: {LOCATIVE})?)",
     # "do that": the action the robot is doing now
     "DO": r"do (?:that|this|it|so)",
     # a prohibition ("don't", "never", "you may not", ...) followed by a space

@@ -273,7 +273,7 @@ def claim_my_noun(m: re.Match[str], r: Resolver) -> tuple[Instruction, ...] | No
     noun names the object when it is one)."""
     if m["noun"] in NOT_NOUNS:
         return None
-    who = re.sub(r"\bmy$", "mine", "mine" if m["who"] == "my" else m["who"])
+    who = re.sub(r"\bmy$", "mine", m["who"])  # "my" and "Jake and my" as owner phrases
     found = owners(("not " if m["neg"] else "") + who + (m["tail"] or ""), True, False, r)
     if found is None:
         return None

@@ -264,13 +264,14 @@ def fit_scales(X: np.ndarray, p: np.ndarray, offset: np.ndarray | None = None,
     most of their agents' predictors are fitted on claims some other Mind fitted them on already
     (on a six-agent store, 282 distinct fits of 2,664 for one ``ownctl ask``)."""
     cfg = cfg or PredictConfig()
-    X = np.array(X, dtype=float)  # a copy: the models keep it, read-only
+    X = np.asarray(X, dtype=float)
     targets = np.asarray(p, dtype=float)
     shift = None if offset is None else np.asarray(offset, dtype=float)
     key = (X.shape, X.tobytes(), targets.shape, targets.tobytes(),
            None if shift is None else (shift.shape, shift.tobytes()), cfg, float(kappa), household)
     hit = _fits.get(key)
     if hit is None:
+        X = X.copy()  # the models keep it, read-only
         K = rbf_kernel(X, X, cfg.gamma) if len(targets) else None
         models = tuple(KernelOwnershipModel(cfg).fit(X, targets, shift, scale, K, kappa, household)
                        for scale in cfg.scales)
